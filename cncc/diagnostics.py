@@ -1,0 +1,145 @@
+"""Diagnostics: stable codes, severities, a sink that every stage reports into.
+
+Stages emit and carry on; exceptions are for bugs only.  The table of codes lives
+here so that ``docs/diagnostics.md`` can be generated from it (see
+``python -m cncc.tools.gendocs``).
+
+Code ranges: E01xx lexical and syntax, E02xx modal interpretation, E03xx macros and
+subprograms, E04xx canned cycles, E05xx frames and compensation, E06xx machine models,
+planning and verification, E07xx pulses, E08xx translation, E09xx driver and files.
+"""
+
+from __future__ import annotations
+
+import enum
+from collections.abc import Iterator
+from dataclasses import dataclass
+
+from cncc.source import Span
+
+
+class Severity(enum.IntEnum):
+    NOTE = 0
+    WARNING = 1
+    ERROR = 2
+
+    @property
+    def label(self) -> str:
+        return self.name.lower()
+
+
+@dataclass(frozen=True, slots=True)
+class CodeInfo:
+    code: str
+    severity: Severity
+    summary: str
+
+
+CODES: dict[str, CodeInfo] = {}
+
+
+def _define(code: str, severity: Severity, summary: str) -> str:
+    if code in CODES:  # pragma: no cover - programming error
+        raise ValueError(f"duplicate diagnostic code {code}")
+    CODES[code] = CodeInfo(code, severity, summary)
+    return code
+
+
+E, W, N = Severity.ERROR, Severity.WARNING, Severity.NOTE
+
+# --- E01xx: lexical and syntax -------------------------------------------------
+SYNTAX = _define("E0101", E, "the block does not follow the dialect's grammar")
+BAD_NUMBER = _define("E0102", E, "a number is malformed (e.g. two decimal points)")
+BAD_NUMBER_LENIENT = _define("W0102", W, "a malformed number was accepted in lenient mode")
+UNCLOSED_COMMENT = _define("W0103", W, "a '(' comment is not closed before the end of the line")
+BAD_CHARACTER = _define("E0104", E, "a character that no G-code dialect uses")
+NUMBER_RANGE = _define("E0105", E, "a number is out of the range its address accepts")
+LINE_TOO_LONG = _define("E0106", E, "a line is longer than the front end accepts")
+EMPTY_PROGRAM = _define("W0107", W, "the program contains no blocks")
+MISSING_VALUE = _define("E0108", E, "an address letter has no value")
+DECIMAL_NOT_ALLOWED = _define("E0109", E, "a decimal point is written where the address takes an integer")
+
+# --- E02xx: modal interpretation -------------------------------------------------
+UNKNOWN_G = _define("E0201", E, "a G code that the dialect does not define")
+UNKNOWN_M = _define("E0202", E, "an M code that the dialect does not define")
+MODAL_CONFLICT = _define("E0203", E, "two codes of the same modal group in one block")
+NOT_SUPPORTED = _define("E0204", E, "a code the dialect defines but cncc does not implement yet")
+REPEATED_WORD = _define("E0205", E, "the same address appears twice in a block")
+UNUSED_WORD = _define("W0206", W, "a word that no code in the block uses")
+ARC_NO_CENTER = _define("E0207", E, "an arc has neither I/J/K nor R")
+ARC_RADIUS = _define("E0208", E, "an arc's start and end are not at the same distance from its centre")
+ARC_R_TOO_SMALL = _define("E0209", E, "an R arc whose radius is less than half the chord")
+ARC_R_FULL_CIRCLE = _define("E0210", E, "an R arc cannot describe a full circle")
+NO_FEED = _define("E0211", E, "a feed move without a feed rate")
+DEFAULT_FEED = _define("N0212", N, "no F programmed yet; the dialect's default feed is used")
+BAD_DWELL = _define("E0213", E, "a dwell time is missing or negative")
+TOO_MANY_M = _define("E0214", E, "more M codes in a block than the dialect allows")
+BAD_OFFSET_INDEX = _define("E0215", E, "a work, tool or reference index out of range")
+G53_INCREMENTAL = _define("W0216", W, "G53 in incremental mode is ignored")
+AFTER_END = _define("N0217", N, "blocks after the program end are not executed")
+DECIMAL_P_DWELL = _define("W0218", W, "G04 P takes integer milliseconds; the fraction is dropped")
+
+# --- E09xx: driver and files --------------------------------------------------
+CANNOT_READ = _define("E0901", E, "an input file cannot be read")
+CANNOT_WRITE = _define("E0902", E, "an output file cannot be written")
+BAD_OFFSETS_FILE = _define("E0903", E, "an offsets or tools file is malformed")
+BAD_OPTION = _define("E0904", E, "a command-line option has a bad value")
+WERROR = _define("E0905", E, "a warning turned into an error by -Werror")
+OUTPUT_IS_INPUT = _define("E0906", E, "the output file would overwrite an input file")
+
+
+@dataclass(frozen=True, slots=True)
+class Related:
+    span: Span
+    message: str
+
+
+@dataclass(frozen=True, slots=True)
+class Diagnostic:
+    code: str
+    severity: Severity
+    span: Span
+    message: str
+    related: tuple[Related, ...] = ()
+
+
+class DiagnosticSink:
+    """Collects diagnostics from every stage; never raises."""
+
+    def __init__(self, *, werror: bool = False, max_count: int = 10_000) -> None:
+        self.items: list[Diagnostic] = []
+        self.werror = werror
+        self.max_count = max_count
+        self.dropped = 0
+
+    def emit(
+        self,
+        code: str,
+        span: Span,
+        message: str,
+        related: tuple[Related, ...] = (),
+        severity: Severity | None = None,
+    ) -> None:
+        if severity is None:
+            info = CODES.get(code)
+            severity = info.severity if info is not None else Severity.ERROR
+        if self.werror and severity is Severity.WARNING:
+            severity = Severity.ERROR
+        if len(self.items) >= self.max_count:
+            self.dropped += 1
+            return
+        self.items.append(Diagnostic(code, severity, span, message, related))
+
+    def __iter__(self) -> Iterator[Diagnostic]:
+        return iter(self.items)
+
+    def __len__(self) -> int:
+        return len(self.items)
+
+    @property
+    def error_count(self) -> int:
+        return sum(1 for d in self.items if d.severity is Severity.ERROR)
+
+    @property
+    def has_errors(self) -> bool:
+        return any(d.severity is Severity.ERROR for d in self.items)

@@ -1,0 +1,163 @@
+"""Dialect profiles: G-code dialects as data.
+
+Each dialect is a TOML file in this folder (``syntec.toml`` ...).  This module loads
+one into a :class:`Dialect`: code tables keyed by ``(letter, number in tenths)``,
+address kinds, least input units, comment and block-end syntax, defaults and
+options.  The same tables drive parsing, lowering, hover texts and emitters.
+"""
+
+from __future__ import annotations
+
+import functools
+import tomllib
+from dataclasses import dataclass, field
+from importlib import resources
+from typing import Any
+
+
+class DialectError(ValueError):
+    """A dialect file is malformed (message names the key)."""
+
+
+def code_tenths(number_text: str) -> int:
+    """``"59.1"`` -> 591, ``"00"`` -> 0, ``"137.1"`` -> 1371."""
+    whole, _, frac = number_text.partition(".")
+    frac = (frac + "0")[:1]
+    return int(whole or "0") * 10 + int(frac or "0")
+
+
+def code_name(letter: str, tenths: int) -> str:
+    """``("G", 591)`` -> ``"G59.1"``, ``("G", 0)`` -> ``"G00"``."""
+    whole, frac = divmod(tenths, 10)
+    text = f"{letter}{whole:02d}"
+    return f"{text}.{frac}" if frac else text
+
+
+@dataclass(frozen=True, slots=True)
+class CodeDef:
+    letter: str
+    tenths: int
+    name: str
+    op: str
+    group: str
+    summary: str
+    words: dict[str, str] = field(default_factory=dict)  # per-code address kinds
+    index: int = 0
+    cycle: str = ""
+
+
+@dataclass(frozen=True, slots=True)
+class Dialect:
+    name: str
+    title: str
+    grammar: str
+    macro_flavour: str
+    comments: tuple[str, ...]
+    block_end: str
+    decimal_rule: str  # "liu" or "units"
+    default_units: str
+    codes: dict[tuple[str, int], CodeDef]
+    addresses: dict[str, str]
+    liu: dict[str, float]
+    groups: dict[str, int]
+    defaults: dict[str, str]
+    options: dict[str, Any]
+    extensions: tuple[str, ...]
+    max_m_per_block: int
+    default_feed_mm_min: float
+    default_feed_mm_rev: float
+    raw: dict[str, Any]
+
+    def code(self, letter: str, tenths: int) -> CodeDef | None:
+        return self.codes.get((letter, tenths))
+
+    def option(self, key: str, default: Any = None) -> Any:
+        return self.options.get(key, default)
+
+    def with_options(self, overrides: dict[str, Any]) -> Dialect:
+        """A copy with some options replaced (unknown keys are an error)."""
+        for key in overrides:
+            if key not in self.options:
+                raise DialectError(f"dialect {self.name!r} has no option {key!r}")
+        opts = {**self.options, **overrides}
+        return Dialect(**{**{f: getattr(self, f) for f in self.__dataclass_fields__}, "options": opts})
+
+
+def available() -> list[str]:
+    names = []
+    for entry in resources.files(__package__).iterdir():
+        if entry.name.endswith(".toml"):
+            names.append(entry.name[:-5])
+    return sorted(names)
+
+
+def _codes(raw: dict[str, Any], letter: str) -> dict[tuple[str, int], CodeDef]:
+    out: dict[tuple[str, int], CodeDef] = {}
+    key = letter.lower()
+    for i, entry in enumerate(raw.get(key, [])):
+        where = f"{key}[{i}]"
+        try:
+            code = str(entry["code"])
+            op = str(entry["op"])
+        except KeyError as exc:
+            raise DialectError(f"{where}: missing key {exc.args[0]!r}") from None
+        if not code.startswith(letter):
+            raise DialectError(f"{where}.code: {code!r} does not start with {letter}")
+        tenths = code_tenths(code[1:])
+        words = entry.get("words", {})
+        if not isinstance(words, dict):
+            raise DialectError(f"{where}.words: expected a table")
+        out[(letter, tenths)] = CodeDef(
+            letter=letter,
+            tenths=tenths,
+            name=code,
+            op=op,
+            group=str(entry.get("group", "non_modal")),
+            summary=str(entry.get("summary", "")),
+            words={str(k): str(v) for k, v in words.items()},
+            index=int(entry.get("index", 0)),
+            cycle=str(entry.get("cycle", "")),
+        )
+    return out
+
+
+def parse_dialect(raw: dict[str, Any]) -> Dialect:
+    try:
+        name = str(raw["name"])
+    except KeyError:
+        raise DialectError("missing key 'name'") from None
+    codes = _codes(raw, "G") | _codes(raw, "M")
+    return Dialect(
+        name=name,
+        title=str(raw.get("title", name)),
+        grammar=str(raw.get("grammar", "fanuc")),
+        macro_flavour=str(raw.get("macro_flavour", "none")),
+        comments=tuple(raw.get("comments", ["paren"])),
+        block_end=str(raw.get("block_end", "")),
+        decimal_rule=str(raw.get("decimal_rule", "units")),
+        default_units=str(raw.get("default_units", "mm")),
+        codes=codes,
+        addresses={str(k): str(v) for k, v in raw.get("addresses", {}).items()},
+        liu={str(k): float(v) for k, v in raw.get("liu", {}).items()},
+        groups={str(k): int(v) for k, v in raw.get("groups", {}).items()},
+        defaults={str(k): str(v) for k, v in raw.get("defaults", {}).items()},
+        options=dict(raw.get("options", {})),
+        extensions=tuple(raw.get("extensions", [])),
+        max_m_per_block=int(raw.get("max_m_per_block", 1)),
+        default_feed_mm_min=float(raw.get("default_feed_mm_min", 0.0)),
+        default_feed_mm_rev=float(raw.get("default_feed_mm_rev", 0.0)),
+        raw=raw,
+    )
+
+
+@functools.cache
+def load_dialect(name: str) -> Dialect:
+    """Load a built-in dialect by name (raises :class:`DialectError` if unknown)."""
+    if name not in available():
+        raise DialectError(f"unknown dialect {name!r} (known: {', '.join(available())})")
+    text = resources.files(__package__).joinpath(f"{name}.toml").read_text(encoding="utf-8")
+    try:
+        raw = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise DialectError(f"{name}.toml: {exc}") from None
+    return parse_dialect(raw)

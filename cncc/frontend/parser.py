@@ -1,0 +1,387 @@
+"""Parser: program text -> syntax :class:`~cncc.frontend.syntax.Block` stream.
+
+The lark grammar (``cncc/grammar/<family>.lark``) defines the language.  Each
+physical line is parsed on its own, so an error costs one line and the parse goes
+on at the next block.  Lines made only of plain words (``N10 G1 X1.5 Y-2 F300``,
+optionally with a trailing comment) take a regular-expression fast path that
+builds the same nodes; ``tests/frontend/test_fastpath.py`` checks the two agree.
+"""
+
+from __future__ import annotations
+
+import functools
+import re
+from collections.abc import Iterator
+from dataclasses import dataclass
+from importlib import resources
+from typing import Any
+
+from lark import Lark, Token, Transformer
+from lark.exceptions import LarkError, UnexpectedCharacters, UnexpectedEOF, UnexpectedInput
+
+from cncc import diagnostics as dg
+from cncc.dialects import Dialect
+from cncc.diagnostics import DiagnosticSink
+from cncc.frontend import syntax as sx
+from cncc.source import SourceFile, Span
+
+MAX_LINE_CHARS = 100_000
+"""Lines longer than this are rejected (a 10 MB line is not a G-code block)."""
+
+
+@dataclass(frozen=True, slots=True)
+class ParseOptions:
+    strict: bool = False  # malformed numbers are errors rather than warnings
+
+
+def grammar_text(family: str, comments: tuple[str, ...], block_end: str) -> str:
+    """The grammar of ``family`` with the dialect's comment and block-end forms."""
+    text = resources.files("cncc.grammar").joinpath(f"{family}.lark").read_text(encoding="utf-8")
+    enabled = set(comments)
+    terminals = {"paren": ["PAREN_COMMENT", "UNCLOSED_PAREN"], "slash": ["SLASH_COMMENT"], "semi": ["SEMI_COMMENT"]}
+    end_tag = "semi" if block_end == ";" else "none"
+    out = []
+    for line in text.splitlines():
+        tag = re.search(r"// @(comment|block_end):(\w+)\s*$", line)
+        if tag is not None:
+            if tag.group(1) == "comment" and tag.group(2) not in enabled:
+                continue
+            if tag.group(1) == "block_end" and tag.group(2) != end_tag:
+                continue
+        if line.rstrip().endswith("// @comment-rule"):
+            names = [t for kind in ("paren", "slash", "semi") if kind in enabled for t in terminals[kind]]
+            line = "comment: " + " | ".join(names) if names else ""
+        out.append(line)
+    return "\n".join(out) + "\n"
+
+
+class _Builder(Transformer[Token, Any]):
+    """Builds syntax nodes with absolute offsets (``base`` is the line's offset)."""
+
+    def __init__(self) -> None:
+        super().__init__()
+        self.base = 0
+        self.bad_numbers: list[tuple[int, int, str]] = []
+
+    # -- helpers
+    def _num(self, tok: Token) -> sx.Num:
+        text = str(tok)
+        start = self.base + (tok.start_pos or 0)
+        end = start + len(text)
+        if text.count(".") > 1:
+            self.bad_numbers.append((start, end, text))
+            text = text[:-1]
+        return sx.Num(float(text), "." in text, start, end)
+
+    # -- words
+    def number(self, items: list[Any]) -> sx.Num:
+        return self._num(items[0])
+
+    def signed_number(self, items: list[Any]) -> sx.Num:
+        sign, tok = items
+        num = self._num(tok)
+        value = -num.value if sign == "-" else num.value
+        return sx.Num(value, num.point, self.base + (sign.start_pos or 0), num.end)
+
+    def var_value(self, items: list[Any]) -> sx.Expr:
+        return self._signed_expr(items)
+
+    def expr_value(self, items: list[Any]) -> sx.Expr:
+        return self._signed_expr(items)
+
+    def _signed_expr(self, items: list[Any]) -> sx.Expr:
+        if len(items) == 2:
+            sign, expr = items
+            if sign == "-":
+                return sx.Neg(expr, self.base + (sign.start_pos or 0), _end(expr))
+            return expr
+        return items[0]  # type: ignore[no-any-return]
+
+    def word(self, items: list[Any]) -> sx.Word:
+        letter_tok, value = items
+        start = self.base + (letter_tok.start_pos or 0)
+        if isinstance(value, sx.Num):
+            return sx.Word(letter_tok.upper(), value.value, value.point, start, value.end)
+        return sx.Word(letter_tok.upper(), 0.0, False, start, _end(value), value)
+
+    def comment(self, items: list[Any]) -> sx.CommentItem:
+        tok = items[0]
+        text = str(tok)
+        start = self.base + (tok.start_pos or 0)
+        return sx.CommentItem(text, start, start + len(text))
+
+    # -- expressions
+    def neg(self, items: list[Any]) -> sx.Expr:
+        sign, operand = items
+        if sign == "+":
+            return operand  # type: ignore[no-any-return]
+        return sx.Neg(operand, self.base + (sign.start_pos or 0), _end(operand))
+
+    def _binary(self, items: list[Any]) -> sx.Expr:
+        expr = items[0]
+        for i in range(1, len(items), 2):
+            op, right = items[i], items[i + 1]
+            expr = sx.BinOp(str(op).upper(), expr, right, _start(expr), _end(right))
+        return expr  # type: ignore[no-any-return]
+
+    compare = sum = product = _binary
+
+    def call(self, items: list[Any]) -> sx.Call:
+        func = items[0]
+        args = tuple(items[1:])
+        start = self.base + (func.start_pos or 0)
+        return sx.Call(str(func).upper(), args, start, _end(args[-1]) + 1)
+
+    def var_number(self, items: list[Any]) -> sx.Var:
+        num = self._num(items[0])
+        return sx.Var(num, num.start - 1, num.end)
+
+    def var_indirect(self, items: list[Any]) -> sx.Var:
+        expr = items[0]
+        return sx.Var(expr, _start(expr) - 2, _end(expr) + 1)
+
+    # -- statements
+    def assignment(self, items: list[Any]) -> sx.Assign:
+        target, expr = items
+        return sx.Assign(target, expr, target.start, _end(expr))
+
+    def goto_stmt(self, items: list[Any]) -> sx.Goto:
+        kw, target = items
+        return sx.Goto(target, self.base + (kw.start_pos or 0), _end(target))
+
+    def then_clause(self, items: list[Any]) -> Any:
+        rest = items[1:]
+        if len(rest) == 1 and isinstance(rest[0], sx.Assign):
+            return rest[0]
+        return tuple(rest)
+
+    def if_stmt(self, items: list[Any]) -> sx.If:
+        kw, cond, then = items
+        end = then.end if not isinstance(then, tuple) else then[-1].end
+        return sx.If(cond, then, self.base + (kw.start_pos or 0), end)
+
+    def while_stmt(self, items: list[Any]) -> sx.While:
+        kw, cond, _do, num = items
+        n = self._num(num)
+        return sx.While(cond, int(n.value), self.base + (kw.start_pos or 0), n.end)
+
+    def end_stmt(self, items: list[Any]) -> sx.EndLoop:
+        kw, num = items
+        n = self._num(num)
+        return sx.EndLoop(int(n.value), self.base + (kw.start_pos or 0), n.end)
+
+    # -- blocks
+    def block(self, items: list[Any]) -> tuple[Any, ...]:
+        return tuple(items)
+
+    def start(self, items: list[Any]) -> list[Any]:
+        return [it for it in items if not (isinstance(it, Token) and it.type == "BLOCK_END")]
+
+
+def _start(node: Any) -> int:
+    return int(node.start)
+
+
+def _end(node: Any) -> int:
+    return int(node.end)
+
+
+@functools.cache
+def _lark(family: str, comments: tuple[str, ...], block_end: str) -> tuple[Lark, _Builder]:
+    builder = _Builder()
+    parser = Lark(
+        grammar_text(family, comments, block_end),
+        parser="lalr",
+        lexer="contextual",
+        transformer=builder,
+        maybe_placeholders=False,
+    )
+    return parser, builder
+
+
+_WORD_RE = re.compile(r"([A-Za-z])[ \t]*([-+]?)[ \t]*(\d+\.?\d*|\.\d+)")
+
+
+@functools.cache
+def _plain_line_re(comments: tuple[str, ...], block_end: str) -> re.Pattern[str]:
+    """A line of plain words, an optional block end and an optional final comment."""
+    tail = []
+    if "paren" in comments:
+        tail.append(r"\([^)]*\)")
+    if "slash" in comments:
+        tail.append(r"//.*")
+    if "semi" in comments:
+        tail.append(r";.*")
+    end = r"(?:;[ \t]*)?" if block_end == ";" else ""
+    comment = f"(?:{'|'.join(tail)})?" if tail else ""
+    word = r"[A-Za-z][ \t]*[-+]?[ \t]*(?:\d+\.?\d*|\.\d+)(?![\d.])"
+    return re.compile(rf"[ \t]*(?:{word}[ \t]*)*{end}[ \t]*(?P<c>{comment})[ \t]*\r?")
+
+
+class Parser:
+    """Parses the text of one source file for one dialect."""
+
+    def __init__(self, dialect: Dialect, sink: DiagnosticSink, options: ParseOptions | None = None) -> None:
+        self.dialect = dialect
+        self.sink = sink
+        self.options = options or ParseOptions()
+        self._comments = dialect.comments
+        self._block_end = dialect.block_end
+        self._plain = _plain_line_re(self._comments, self._block_end)
+        self._family = dialect.grammar
+
+    def blocks(self, src: SourceFile) -> Iterator[sx.Block]:
+        """Yield the blocks of ``src`` in order."""
+        text = src.text
+        sid = src.source_id
+        fullmatch = self._plain.fullmatch
+        pos = 0
+        line_no = 0
+        n = len(text)
+        while pos < n or (pos == n and line_no == 0 and n > 0):
+            nl = text.find("\n", pos)
+            end = n if nl < 0 else nl
+            line_no += 1
+            line = text[pos:end]
+            if len(line) > MAX_LINE_CHARS:
+                self.sink.emit(dg.LINE_TOO_LONG, Span(sid, pos, pos + 1),
+                               f"line is {len(line)} characters long (limit {MAX_LINE_CHARS}); skipped")
+            elif line and not line.isspace():
+                m = fullmatch(line)
+                if m is not None:
+                    yield self._plain_block(line, pos, line_no, m.start("c"), m.group("c"))
+                else:
+                    yield from self._lark_blocks(src, line, pos, line_no)
+            if nl < 0:
+                break
+            pos = nl + 1
+
+    # ---- fast path
+    def _plain_block(self, line: str, base: int, line_no: int, cpos: int, comment: str) -> sx.Block:
+        body = line[:cpos] if comment else line
+        words = tuple(
+            sx.Word(
+                m.group(1).upper(),
+                -float(m.group(3)) if m.group(2) == "-" else float(m.group(3)),
+                "." in m.group(3),
+                base + m.start(),
+                base + m.end(),
+            )
+            for m in _WORD_RE.finditer(body)
+        )
+        comments: tuple[sx.CommentItem, ...] = ()
+        if comment:
+            comments = (sx.CommentItem(comment, base + cpos, base + cpos + len(comment)),)
+        return sx.Block(line_no, base, base + len(line.rstrip("\r")), words, comments)
+
+    # ---- grammar path
+    def _lark_blocks(self, src: SourceFile, line: str, base: int, line_no: int) -> Iterator[sx.Block]:
+        parser, builder = _lark(self._family, self._comments, self._block_end)
+        builder.base = base
+        builder.bad_numbers = []
+        stripped = line.rstrip("\r")
+        trailing: sx.CommentItem | None = None
+        try:
+            parts = parser.parse(stripped)
+        except UnexpectedInput as exc:
+            recovered = self._recover_after_block_end(parser, builder, stripped, base, exc)
+            if recovered is None:
+                self._syntax_error(src, stripped, base, exc)
+                return
+            parts, trailing = recovered
+        except LarkError as exc:  # pragma: no cover - defensive: grammar bugs
+            self.sink.emit(dg.SYNTAX, Span(src.source_id, base, base + 1), f"cannot parse block: {exc}")
+            return
+        for start, end, text in builder.bad_numbers:
+            if self.options.strict or not self.dialect.option("lenient_numbers", True):
+                self.sink.emit(dg.BAD_NUMBER, Span(src.source_id, start, end), f"malformed number '{text}'")
+            else:
+                self.sink.emit(dg.BAD_NUMBER_LENIENT, Span(src.source_id, start, end),
+                               f"malformed number '{text}' read as '{text[:-1]}'")
+        for k, items in enumerate(parts):
+            yield self._assemble(items, base, stripped, line_no, trailing if k == len(parts) - 1 else None)
+
+    def _recover_after_block_end(
+        self, parser: Lark, builder: _Builder, line: str, base: int, exc: UnexpectedInput
+    ) -> tuple[list[Any], sx.CommentItem] | None:
+        """Lenient: free text after the last ';' of a block is taken as a comment."""
+        if self._block_end != ";" or self.options.strict:
+            return None
+        cut = _block_end_before(line, getattr(exc, "pos_in_stream", None) or 0)
+        if cut < 0:
+            return None
+        try:
+            parts = parser.parse(line[:cut])
+        except LarkError:
+            return None
+        rest = line[cut + 1:]
+        lead = len(rest) - len(rest.lstrip())
+        start = base + cut + 1 + lead
+        comment = sx.CommentItem(rest.strip(), start, start + len(rest.strip()))
+        self.sink.emit(dg.SYNTAX, Span(-2, 0, 0), "")  # placeholder replaced below
+        self.sink.items.pop()
+        return parts, comment
+
+    def _syntax_error(self, src: SourceFile, line: str, base: int, exc: UnexpectedInput) -> None:
+        col = getattr(exc, "pos_in_stream", None)
+        if col is None or col < 0:
+            col = len(line)
+        if isinstance(exc, UnexpectedCharacters):
+            ch = line[col] if col < len(line) else ""
+            code = dg.BAD_CHARACTER if not ch.isprintable() or ord(ch) > 126 else dg.SYNTAX
+            what = f"unexpected character {ch!r}"
+        elif isinstance(exc, UnexpectedEOF):
+            what = "unexpected end of block"
+            code = dg.SYNTAX
+        else:
+            tok = getattr(exc, "token", None)
+            what = f"unexpected {str(tok)!r}" if tok is not None and str(tok) else "unexpected end of block"
+            code = dg.MISSING_VALUE if _is_bare_letter(line, col) else dg.SYNTAX
+        self.sink.emit(code, Span(src.source_id, base + col, base + min(col + 1, max(len(line), col + 1))),
+                       f"{what}; block skipped")
+
+    def _assemble(
+        self, items: tuple[Any, ...], base: int, line: str, line_no: int, trailing: sx.CommentItem | None
+    ) -> sx.Block:
+        words: list[sx.Word] = []
+        comments: list[sx.CommentItem] = []
+        statements: list[sx.Statement] = []
+        block_delete = 0
+        percent = False
+        for it in items:
+            if isinstance(it, sx.Word):
+                words.append(it)
+            elif isinstance(it, sx.CommentItem):
+                comments.append(it)
+            elif isinstance(it, Token):
+                if it.type == "BLOCK_DELETE":
+                    block_delete = int(it[1:]) if len(it) > 1 else 1
+                elif it.type == "PERCENT":
+                    percent = True
+            else:
+                statements.append(it)
+        if trailing is not None:
+            comments.append(trailing)
+        return sx.Block(line_no, base, base + len(line), tuple(words), tuple(comments), tuple(statements),
+                        block_delete, percent)
+
+
+def _block_end_before(line: str, pos: int) -> int:
+    """Index of the last ';' before ``pos`` that is not inside a comment, or -1."""
+    depth = 0
+    last = -1
+    for i, ch in enumerate(line[:pos]):
+        if ch == "(":
+            depth += 1
+        elif ch == ")":
+            depth = max(0, depth - 1)
+        elif ch == ";" and depth == 0:
+            last = i
+    return last
+
+
+def _is_bare_letter(line: str, col: int) -> bool:
+    j = col - 1
+    while j >= 0 and line[j] in " \t":
+        j -= 1
+    return j >= 0 and line[j].isalpha()

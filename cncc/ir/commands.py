@@ -1,0 +1,239 @@
+"""IR commands: the closed set of things a machine does.
+
+Every command is a frozen, slotted dataclass carrying its source ``span`` and the
+``frame`` it was programmed in.  Positions are 6-vectors (X Y Z A B C) in
+millimetres and degrees, in the coordinates of the command's frame: programmed
+coordinates after the front end resolved absolute/incremental words, units and the
+decimal-point rule.  Passes lower frames step by step until every command is in
+machine coordinates with the identity frame.
+
+Dispatch on commands with ``match``/``case`` over :data:`Command`.
+"""
+
+from __future__ import annotations
+
+import enum
+from dataclasses import dataclass, field
+from typing import Any
+
+from cncc.ir.frame import Frame, Plane, Vec6
+from cncc.source import Span
+
+
+class PathMode(enum.Enum):
+    """How a motion ends: blend into the next or stop exactly (G61/G09)."""
+
+    CONTINUOUS = "continuous"  # G64: blend within the tolerance
+    EXACT_STOP = "exact-stop"  # G61/G09: decelerate to zero at the end
+    EXACT_PATH = "exact-path"  # G61.1-like: stay on the path, no stop required
+
+
+@dataclass(frozen=True, slots=True)
+class Motion:
+    """Path-mode data shared by all motions of a block (interned by the front end)."""
+
+    mode: PathMode = PathMode.CONTINUOUS
+    blend_tolerance_mm: float | None = None  # None: the machine default
+    inverse_time: bool = False
+    per_rev: bool = False  # G95: feed is per spindle revolution
+
+
+DEFAULT_MOTION = Motion()
+
+
+@dataclass(frozen=True, slots=True)
+class Rapid:
+    span: Span
+    frame: Frame
+    start: Vec6
+    end: Vec6
+    motion: Motion = DEFAULT_MOTION
+    origin: str = ""  # e.g. "G28", "cycle" - why the rapid exists (for reports)
+
+
+@dataclass(frozen=True, slots=True)
+class Linear:
+    span: Span
+    frame: Frame
+    start: Vec6
+    end: Vec6
+    feed_mm_min: float  # path feed in mm/min (per-rev feeds resolved by `motion.per_rev`)
+    motion: Motion = DEFAULT_MOTION
+    origin: str = ""
+
+
+@dataclass(frozen=True, slots=True)
+class Arc:
+    """Circular or helical move in ``plane``.
+
+    ``center`` holds the full 6-vector whose in-plane components are the centre;
+    ``turns`` is signed like LinuxCNC's rotation: +1 one counter-clockwise turn (or
+    part of it), -1 clockwise; |turns| > 1 adds full circles.
+    """
+
+    span: Span
+    frame: Frame
+    start: Vec6
+    end: Vec6
+    center: Vec6
+    turns: int
+    plane: Plane
+    feed_mm_min: float
+    motion: Motion = DEFAULT_MOTION
+    origin: str = ""
+
+
+@dataclass(frozen=True, slots=True)
+class Dwell:
+    span: Span
+    frame: Frame
+    seconds: float
+
+
+class SpindleState(enum.Enum):
+    CW = "cw"
+    CCW = "ccw"
+    OFF = "off"
+    ORIENT = "orient"
+
+
+@dataclass(frozen=True, slots=True)
+class Spindle:
+    span: Span
+    frame: Frame
+    state: SpindleState
+    rpm: float
+
+
+@dataclass(frozen=True, slots=True)
+class SpindleSpeed:
+    """S word: spindle speed set (rpm, or surface speed with ``css``)."""
+
+    span: Span
+    frame: Frame
+    rpm: float
+    css: bool = False
+
+
+@dataclass(frozen=True, slots=True)
+class FeedRate:
+    """F word programmed: the new feed rate (mm/min, or mm/rev when per-rev)."""
+
+    span: Span
+    frame: Frame
+    feed: float
+    per_rev: bool = False
+
+
+class CoolantState(enum.Enum):
+    MIST = "mist"
+    FLOOD = "flood"
+    OFF = "off"
+
+
+@dataclass(frozen=True, slots=True)
+class Coolant:
+    span: Span
+    frame: Frame
+    state: CoolantState
+
+
+@dataclass(frozen=True, slots=True)
+class SelectTool:
+    span: Span
+    frame: Frame
+    tool: int
+
+
+@dataclass(frozen=True, slots=True)
+class ToolChange:
+    span: Span
+    frame: Frame
+    tool: int
+
+
+class StopKind(enum.Enum):
+    PROGRAM_STOP = "M00"
+    OPTIONAL_STOP = "M01"
+    PROGRAM_END = "M02"
+    END_REWIND = "M30"
+
+
+@dataclass(frozen=True, slots=True)
+class Stop:
+    span: Span
+    frame: Frame
+    kind: StopKind
+
+
+@dataclass(frozen=True, slots=True)
+class Comment:
+    span: Span
+    frame: Frame
+    text: str
+
+
+@dataclass(frozen=True, slots=True)
+class Message:
+    """An operator message (MSG, #3006 ...), optionally a pause."""
+
+    span: Span
+    frame: Frame
+    text: str
+    pause: bool = False
+
+
+@dataclass(frozen=True, slots=True)
+class SetMode:
+    """A modal change with no motion that downstream stages may report (units, plane...).
+
+    ``name`` is a canonical operation name, ``value`` its argument.
+    """
+
+    span: Span
+    frame: Frame
+    name: str
+    value: Any = None
+
+
+@dataclass(frozen=True, slots=True)
+class Aux:
+    """An auxiliary M function with no modelled effect (e.g. M19 orient, user M codes)."""
+
+    span: Span
+    frame: Frame
+    code: int  # M number in tenths
+    args: tuple[tuple[str, float], ...] = field(default=())
+
+
+@dataclass(frozen=True, slots=True)
+class Wait:
+    """Wait for an input or an operator (SZGH WAT, MSG pause); time from the machine."""
+
+    span: Span
+    frame: Frame
+    what: str
+    seconds: float = 0.0
+
+
+Command = (
+    Rapid
+    | Linear
+    | Arc
+    | Dwell
+    | Spindle
+    | SpindleSpeed
+    | FeedRate
+    | Coolant
+    | SelectTool
+    | ToolChange
+    | Stop
+    | Comment
+    | Message
+    | SetMode
+    | Aux
+    | Wait
+)
+"""The closed union of IR commands.  Later issues add cycles, probes, NURBS."""
+
+MOTION_TYPES = (Rapid, Linear, Arc)

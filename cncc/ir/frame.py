@@ -1,0 +1,139 @@
+"""Frames: the immutable coordinate context a command was programmed in.
+
+A frame records everything needed to turn the command's programmed coordinates into
+machine coordinates: units, plane, work/local/G92 offsets, the programmable
+transforms (polar, scaling, mirror, rotation) and the compensation state.  Frames
+are shared: consecutive commands programmed under the same modes point to the same
+frame object, and a new frame is built only when something changes.
+
+All lengths are millimetres and all angles degrees, whatever the program's units;
+``units`` only says how the program wrote them (for emitters and the canon trace).
+"""
+
+from __future__ import annotations
+
+import enum
+from dataclasses import dataclass
+
+AXES: tuple[str, ...] = ("X", "Y", "Z", "A", "B", "C")
+"""Axis order of every 6-vector in the IR."""
+
+Vec6 = tuple[float, float, float, float, float, float]
+ZERO6: Vec6 = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+MM_PER_INCH = 25.4
+
+
+class Units(enum.Enum):
+    MM = "mm"
+    INCH = "inch"
+
+    @property
+    def mm_per_unit(self) -> float:
+        return 1.0 if self is Units.MM else MM_PER_INCH
+
+
+class Plane(enum.Enum):
+    """Active plane: the two in-plane axes and the normal axis (indices into AXES)."""
+
+    XY = (0, 1, 2)
+    ZX = (2, 0, 1)
+    YZ = (1, 2, 0)
+
+    @property
+    def first(self) -> int:
+        return self.value[0]
+
+    @property
+    def second(self) -> int:
+        return self.value[1]
+
+    @property
+    def normal(self) -> int:
+        return self.value[2]
+
+
+class CompSide(enum.Enum):
+    OFF = "off"
+    LEFT = "left"
+    RIGHT = "right"
+
+
+@dataclass(frozen=True, slots=True)
+class Scaling:
+    center_mm: tuple[float, float, float]
+    factors: tuple[float, float, float]
+
+
+@dataclass(frozen=True, slots=True)
+class Mirror:
+    """Programmable mirror: axes flagged True are mirrored about ``center_mm``."""
+
+    center_mm: tuple[float, float, float]
+    axes: tuple[bool, bool, bool]
+
+
+@dataclass(frozen=True, slots=True)
+class Rotation:
+    """Rotation in the active plane about ``center_mm`` (plane coordinates)."""
+
+    plane: Plane
+    center_mm: tuple[float, float]
+    angle_deg: float
+
+
+@dataclass(frozen=True, slots=True)
+class Polar:
+    """Polar coordinate mode: radius and angle words about ``origin_mm``."""
+
+    plane: Plane
+    origin_mm: tuple[float, float]
+
+
+@dataclass(frozen=True, slots=True)
+class Frame:
+    units: Units = Units.MM
+    plane: Plane = Plane.XY
+    work_index: int = 1  # 1 = G54, 2 = G55, ... 6 = G59, 7.. = G59.1..
+    work_offset_mm: Vec6 = ZERO6
+    local_offset_mm: Vec6 = ZERO6  # G52
+    g92_offset_mm: Vec6 = ZERO6
+    machine_coords: bool = False  # G53: coordinates are machine coordinates
+    polar: Polar | None = None
+    scaling: Scaling | None = None
+    mirror: Mirror | None = None
+    rotation: Rotation | None = None
+    tool_length_mm: float = 0.0  # signed, added to Z (G43 +, G44 -)
+    tool_length_index: int = 0  # H number (0: none)
+    comp_side: CompSide = CompSide.OFF
+    comp_radius_mm: float = 0.0
+    comp_index: int = 0  # D number
+
+    @property
+    def total_offset_mm(self) -> Vec6:
+        """Program origin in machine coordinates (work + local + G92)."""
+        if self.machine_coords:
+            return ZERO6
+        w, loc, g = self.work_offset_mm, self.local_offset_mm, self.g92_offset_mm
+        return (
+            w[0] + loc[0] + g[0],
+            w[1] + loc[1] + g[1],
+            w[2] + loc[2] + g[2],
+            w[3] + loc[3] + g[3],
+            w[4] + loc[4] + g[4],
+            w[5] + loc[5] + g[5],
+        )
+
+    @property
+    def is_identity(self) -> bool:
+        return self == IDENTITY_FRAME or (
+            self.total_offset_mm == ZERO6
+            and self.polar is None
+            and self.scaling is None
+            and self.mirror is None
+            and self.rotation is None
+            and self.tool_length_mm == 0.0
+            and self.comp_side is CompSide.OFF
+        )
+
+
+IDENTITY_FRAME = Frame()

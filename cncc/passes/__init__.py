@@ -1,0 +1,61 @@
+"""Passes over the IR: small declared objects, one per module, and a pass manager.
+
+A pass has a ``name`` (also its spelling in ``-p 'name{opt=value}'``), options as
+dataclass fields, and ``run(commands, ctx) -> commands``.  Passes stream
+(``Iterable[Command] -> Iterator[Command]``) unless they need the whole program.
+Passes import ``cncc.ir`` (and below), never the front end or a backend.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Iterator
+from dataclasses import dataclass, field
+from typing import Any, ClassVar
+
+from cncc.diagnostics import DiagnosticSink
+from cncc.dialects import Dialect
+from cncc.ir import Command
+from cncc.ir.machine import MachineModel
+
+
+@dataclass(slots=True)
+class PassContext:
+    """What every pass may read: the sink, the dialect and the machine model."""
+
+    sink: DiagnosticSink
+    dialect: Dialect | None = None
+    machine: MachineModel | None = None
+    options: dict[str, Any] = field(default_factory=dict)
+
+
+@dataclass(frozen=True, kw_only=True)
+class Pass:
+    """Base class of passes."""
+
+    name: ClassVar[str] = ""
+
+    def run(self, cmds: Iterable[Command], ctx: PassContext) -> Iterator[Command]:
+        raise NotImplementedError
+
+
+_REGISTRY: dict[str, type[Pass]] = {}
+
+
+def register(cls: type[Pass]) -> type[Pass]:
+    """Class decorator: make a pass known to the pass manager by its name."""
+    if not cls.name:
+        raise ValueError(f"{cls.__name__} has no name")
+    _REGISTRY[cls.name] = cls
+    return cls
+
+
+def registered() -> dict[str, type[Pass]]:
+    return dict(_REGISTRY)
+
+
+def run_pipeline(passes: Iterable[Pass], cmds: Iterable[Command], ctx: PassContext) -> Iterator[Command]:
+    """Chain the passes lazily: each consumes the previous one's stream."""
+    stream: Iterable[Command] = cmds
+    for p in passes:
+        stream = p.run(stream, ctx)
+    return iter(stream)
