@@ -1,0 +1,28 @@
+"""Front end: program text -> syntax blocks -> IR commands.
+
+``lower(src, dialect, sink, options)`` is the one entry point the driver uses: it
+parses ``src`` with the dialect's grammar and lowers the blocks with the modal
+interpreter, streaming commands.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+
+from cncc.diagnostics import DiagnosticSink
+from cncc.dialects import Dialect
+from cncc.frontend.interp import InterpOptions, Interpreter
+from cncc.frontend.parser import ParseOptions, Parser
+from cncc.ir import Command
+from cncc.source import SourceFile
+
+__all__ = ["InterpOptions", "Interpreter", "ParseOptions", "Parser", "lower"]
+
+
+def lower(src: SourceFile, dialect: Dialect, sink: DiagnosticSink,
+          options: InterpOptions | None = None) -> Iterator[Command]:
+    """Parse and interpret ``src``; yield IR commands in program order."""
+    opts = options or InterpOptions()
+    parser = Parser(dialect, sink, ParseOptions(strict=opts.strict))
+    interp = Interpreter(dialect, sink, src.source_id, opts)
+    return interp.run(parser.blocks(src))

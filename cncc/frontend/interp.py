@@ -1,0 +1,288 @@
+"""Modal interpretation: syntax blocks -> IR commands.
+
+The :class:`Interpreter` keeps the modal state (a frozen :class:`ModalState`
+snapshot), the current frame and the current position, and lowers one block at a
+time with :meth:`Interpreter.execute`.  Codes are looked up in the dialect's tables
+and dispatched on their canonical ``op`` through the handler table in
+:mod:`cncc.frontend.ops`; codes without a handler get a "not supported yet"
+diagnostic rather than a syntax error.
+
+Within a block, effects happen in the order a Fanuc-family controller applies them:
+comments, feed mode, F, S, T, M06, spindle, coolant, dwell, plane, units, cutter
+compensation, length compensation, work system, path mode, distance mode, return
+level, non-modal setting codes, motion, then program stops and calls.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Iterator
+from dataclasses import dataclass, field
+
+from cncc import diagnostics as dg
+from cncc.diagnostics import DiagnosticSink
+from cncc.dialects import CodeDef, Dialect, code_name, code_tenths
+from cncc.frontend.modal import ModalState, Reference
+from cncc.frontend.syntax import Block, Word
+from cncc.frontend.words import WordReader
+from cncc.ir import (
+    IDENTITY_FRAME,
+    ZERO6,
+    Command,
+    Comment,
+    Frame,
+    Motion,
+    Units,
+    Vec6,
+)
+from cncc.source import Span
+
+# Execution order of the ops within one block (lower runs first).
+ORDER: dict[str, int] = {
+    "feed_per_min": 10, "feed_per_rev": 10, "inverse_time": 10,
+    "dwell": 40,
+    "plane_xy": 50, "plane_zx": 50, "plane_yz": 50,
+    "inch": 55, "metric": 55,
+    "comp_off": 60, "comp_left": 60, "comp_right": 60,
+    "length_plus": 65, "length_minus": 65, "length_off": 65,
+    "work": 70,
+    "exact_stop_mode": 75, "curve_mode": 75, "tapping_mode": 75, "continuous_mode": 75, "exact_stop_once": 75,
+    "absolute": 80, "incremental": 80,
+    "return_initial": 85, "return_r": 85,
+    "css_on": 86, "css_off": 86,
+    "polar_on": 87, "polar_off": 87, "scale_on": 87, "scale_off": 87, "mirror_on": 87, "mirror_off": 87,
+    "rotate_on": 88, "rotate_off": 88,
+}
+DEFAULT_ORDER = 90  # non-modal and motion codes
+AXIS_LETTERS = "XYZABC"
+AXIS_INDEX = {c: i for i, c in enumerate(AXIS_LETTERS)}
+# Ops that take the block's axis words for themselves (so no motion happens).
+AXIS_CONSUMERS = frozenset({"home", "home2", "home_return", "set_origin", "local_offset", "data_input",
+                            "dwell", "scale_on", "mirror_on", "mirror_off", "rotate_on", "tool_measure",
+                            "tool_measure2", "macro_call", "modal_call"})
+MODAL_FREE_GROUPS = frozenset({"non_modal"})
+
+
+@dataclass(slots=True)
+class InterpOptions:
+    """Tables and switches that come from the command line, not from the program."""
+
+    work_offsets_mm: dict[int, Vec6] = field(default_factory=dict)  # 1 = G54 ...
+    tool_lengths_mm: dict[int, float] = field(default_factory=dict)  # H number -> length
+    tool_radii_mm: dict[int, float] = field(default_factory=dict)  # D number -> radius
+    reference_mm: tuple[Vec6, ...] = (ZERO6,)  # G28, G30 P2, P3, P4 in machine coordinates
+    block_delete: bool = True  # skip blocks starting with '/'
+    strict: bool = False
+    start_mm: Vec6 = ZERO6
+
+
+@dataclass(slots=True)
+class BlockContext:
+    """Everything the handlers of one block share."""
+
+    block: Block
+    span: Span
+    words: dict[str, Word]  # non-G/M words by letter
+    codes: list[CodeDef]
+    out: list[Command]
+    axis_used: bool = False  # an op consumed the axis words
+    block_flags: set[str] = field(default_factory=set)  # one-block modifiers (G53, G09 ...)
+
+
+class Interpreter:
+    """Lowers blocks of one dialect to IR commands, keeping modal state."""
+
+    def __init__(self, dialect: Dialect, sink: DiagnosticSink, source_id: int = 0,
+                 options: InterpOptions | None = None) -> None:
+        from cncc.frontend import ops  # the handler table
+
+        self.dialect = dialect
+        self.sink = sink
+        self.source_id = source_id
+        self.options = options or InterpOptions()
+        self.handlers = ops.HANDLERS
+        units = Units.INCH if dialect.default_units == "inch" else Units.MM
+        self.reader = WordReader.for_dialect(dialect, units)
+        self.modal = ModalState()
+        self.frame = Frame(units=units, work_offset_mm=self.options.work_offsets_mm.get(1, ZERO6))
+        self.pos: Vec6 = self.options.start_mm
+        self.reference = Reference()
+        self.ended = False
+        self._end_noted = False
+        self._motion_cache: dict[Motion, Motion] = {}
+        self._apply_defaults()
+
+    # ---- set-up
+    def _apply_defaults(self) -> None:
+        """Apply the dialect's power-on codes without emitting anything."""
+        scratch: list[Command] = []
+        for code in self.dialect.defaults.values():
+            letter = code[0]
+            cdef = self.dialect.code(letter, code_tenths(code[1:]))
+            if cdef is None or cdef.op not in self.handlers:
+                continue
+            ctx = BlockContext(Block(0, 0, 0, ()), Span(self.source_id, 0, 0), {}, [cdef], scratch)
+            self.handlers[cdef.op](self, ctx, cdef)
+        self.modal = _replace(self.modal, codes=tuple(sorted(self.dialect.defaults.items())))
+
+    # ---- main entry points
+    def run(self, blocks: Iterable[Block]) -> Iterator[Command]:
+        for block in blocks:
+            yield from self.execute(block)
+
+    def execute(self, block: Block) -> list[Command]:
+        """Lower one block whose word values are plain numbers."""
+        out: list[Command] = []
+        if self.ended:
+            if not self._end_noted and (block.words or block.statements):
+                self._end_noted = True
+                self.sink.emit(dg.AFTER_END, Span(self.source_id, block.start, block.end),
+                               "blocks after the program end are not executed")
+            return out
+        if block.block_delete and self.options.block_delete:
+            return out
+        span = Span(self.source_id, block.start, block.end)
+        for c in block.comments:
+            text = _comment_text(c.text)
+            if text is not None:
+                out.append(Comment(Span(self.source_id, c.start, c.end), self.frame, text))
+            if c.text.startswith("(") and not c.text.endswith(")"):
+                self.sink.emit(dg.UNCLOSED_COMMENT, Span(self.source_id, c.start, c.end),
+                               "comment '(' is not closed on this line; the rest of the line is taken as comment")
+        if block.statements:
+            self.sink.emit(dg.NOT_SUPPORTED, Span(self.source_id, block.statements[0].start, block.statements[0].end),
+                           f"macro statements need the {self.dialect.macro_flavour} macro evaluator")
+            return out
+        if not block.words:
+            return out
+        ctx = self._classify(block, span, out)
+        if ctx is None:
+            return out
+        from cncc.frontend import ops
+
+        ops.run_block(self, ctx)
+        return out
+
+    # ---- helpers used by the handlers
+    def emit_error(self, code: str, span: Span, message: str) -> None:
+        self.sink.emit(code, span, message)
+
+    def word_span(self, w: Word) -> Span:
+        return Span(self.source_id, w.start, w.end)
+
+    def intern_motion(self, m: Motion) -> Motion:
+        return self._motion_cache.setdefault(m, m)
+
+    def set_frame(self, frame: Frame) -> None:
+        """Switch frames keeping the machine position: program position follows."""
+        old, new = self.frame.total_offset_mm, frame.total_offset_mm
+        if old != new:
+            p = self.pos
+            self.pos = (p[0] + old[0] - new[0], p[1] + old[1] - new[1], p[2] + old[2] - new[2],
+                        p[3] + old[3] - new[3], p[4] + old[4] - new[4], p[5] + old[5] - new[5])
+        if frame.units is not self.frame.units:
+            self.reader = WordReader.for_dialect(self.dialect, frame.units)
+        self.frame = frame
+
+    def set_modal(self, group: str, code: CodeDef) -> None:
+        codes = dict(self.modal.codes)
+        codes[group] = code.name
+        self.modal = _replace(self.modal, codes=tuple(sorted(codes.items())))
+
+    # ---- block classification
+    def _classify(self, block: Block, span: Span, out: list[Command]) -> BlockContext | None:
+        words: dict[str, Word] = {}
+        codes: list[CodeDef] = []
+        groups: dict[str, CodeDef] = {}
+        m_count = 0
+        ok = True
+        for w in block.words:
+            letter = w.letter
+            if w.expr is not None:
+                self.sink.emit(dg.NOT_SUPPORTED, self.word_span(w),
+                               f"{letter} with an expression needs the {self.dialect.macro_flavour} macro evaluator")
+                ok = False
+                continue
+            if letter in "GM":
+                cdef = self._lookup(w)
+                if cdef is None:
+                    ok = False
+                    continue
+                if letter == "M":
+                    m_count += 1
+                    group = "m:" + _m_group(cdef.op)
+                else:
+                    group = cdef.group
+                prev = groups.get(group)
+                if prev is not None and group not in MODAL_FREE_GROUPS and group != "m:other":
+                    self.sink.emit(dg.MODAL_CONFLICT, self.word_span(w),
+                                   f"{cdef.name} and {prev.name} are in the same modal group ({group.removeprefix('m:')})")
+                    ok = False
+                    continue
+                groups[group] = cdef
+                codes.append(cdef)
+            elif letter == "N" or letter == "O":
+                continue
+            else:
+                if letter in words:
+                    self.sink.emit(dg.REPEATED_WORD, self.word_span(w), f"address {letter} appears twice in the block")
+                    ok = False
+                    continue
+                words[letter] = w
+        if m_count > self.dialect.max_m_per_block:
+            self.sink.emit(dg.TOO_MANY_M, span,
+                           f"{m_count} M codes in one block; {self.dialect.name} allows {self.dialect.max_m_per_block}")
+            ok = False
+        if "motion" in groups and "cycle" in groups and groups["cycle"].op != "cycle_off":
+            # Group 01 and a canned cycle in one block: the motion wins, the cycle is cancelled.
+            codes.remove(groups["cycle"])
+        if not ok:
+            return None
+        codes.sort(key=lambda c: ORDER.get(c.op, DEFAULT_ORDER))
+        return BlockContext(block, span, words, codes, out)
+
+    def _lookup(self, w: Word) -> CodeDef | None:
+        if w.value < 0 or w.value >= 10000:
+            self.sink.emit(dg.NUMBER_RANGE, self.word_span(w), f"{w.letter}{w.value:g} is out of range")
+            return None
+        tenths = round(w.value * 10)
+        if abs(w.value * 10 - tenths) > 1e-6:
+            self.sink.emit(dg.UNKNOWN_G if w.letter == "G" else dg.UNKNOWN_M, self.word_span(w),
+                           f"{w.letter}{w.value:g} is not a {self.dialect.name} code")
+            return None
+        cdef = self.dialect.code(w.letter, tenths)
+        if cdef is None:
+            self.sink.emit(dg.UNKNOWN_G if w.letter == "G" else dg.UNKNOWN_M, self.word_span(w),
+                           f"{code_name(w.letter, tenths)} is not a {self.dialect.name} code")
+        return cdef
+
+
+def _replace(state: ModalState, **changes: object) -> ModalState:
+    from dataclasses import replace
+
+    return replace(state, **changes)  # type: ignore[arg-type]
+
+
+def _m_group(op: str) -> str:
+    if op.startswith("spindle"):
+        return "spindle"
+    if op.startswith("coolant"):
+        return "coolant"
+    if op in ("program_stop", "optional_stop", "program_end", "program_end_rewind", "subprogram_call",
+              "subprogram_return"):
+        return "stop"
+    if op == "tool_change":
+        return "tool"
+    return "other"
+
+
+def _comment_text(text: str) -> str | None:
+    if text.startswith("//"):
+        return text[2:].strip()
+    if text.startswith("("):
+        return text[1:-1].strip() if text.endswith(")") else text[1:].strip()
+    if text.startswith(";"):
+        return text[1:].strip()
+    return text.strip()
+
+
+__all__ = ["IDENTITY_FRAME", "BlockContext", "InterpOptions", "Interpreter"]

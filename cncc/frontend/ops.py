@@ -1,0 +1,505 @@
+"""Handlers of the canonical operations named in the dialect tables.
+
+``HANDLERS`` maps an op name (the ``op`` of a code in ``cncc/dialects/*.toml``) to a
+function ``(interp, ctx, code) -> None``.  ``MOTIONS`` maps a motion mode to the
+function that lowers the block's end point.  Later features register more entries
+(canned cycles, macro calls, transforms) from their own modules.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import replace
+from typing import TYPE_CHECKING
+
+from cncc import diagnostics as dg
+from cncc.dialects import CodeDef
+from cncc.frontend import arcs
+from cncc.ir import (
+    Arc,
+    Coolant,
+    CoolantState,
+    Dwell,
+    FeedRate,
+    Linear,
+    Motion,
+    PathMode,
+    Plane,
+    Rapid,
+    SelectTool,
+    SetMode,
+    Spindle,
+    SpindleSpeed,
+    SpindleState,
+    Stop,
+    StopKind,
+    ToolChange,
+    Units,
+    Vec6,
+)
+
+if TYPE_CHECKING:
+    from cncc.frontend.interp import BlockContext, Interpreter
+
+Handler = Callable[["Interpreter", "BlockContext", CodeDef], None]
+MotionHandler = Callable[["Interpreter", "BlockContext", Vec6], None]
+HANDLERS: dict[str, Handler] = {}
+MOTIONS: dict[str, MotionHandler] = {}
+AXES = "XYZABC"
+
+
+def handler(*ops: str) -> Callable[[Handler], Handler]:
+    def deco(fn: Handler) -> Handler:
+        for op in ops:
+            HANDLERS[op] = fn
+        return fn
+
+    return deco
+
+
+# ---- block driver -----------------------------------------------------------------
+_M_ORDER = {"tool_change": 0, "spindle_cw": 1, "spindle_ccw": 1, "spindle_off": 1, "spindle_orient": 1,
+            "coolant_flood": 2, "coolant_mist": 2, "coolant_off": 2, "coolant_mist_off": 2}
+
+
+def run_block(it: Interpreter, ctx: BlockContext) -> None:
+    from cncc.frontend.interp import DEFAULT_ORDER, ORDER
+
+    gs = [c for c in ctx.codes if c.letter == "G"]
+    ms = [c for c in ctx.codes if c.letter == "M"]
+    early = [c for c in gs if ORDER.get(c.op, DEFAULT_ORDER) < 20]
+    for c in early:
+        _dispatch(it, ctx, c)
+    _feed_speed_tool(it, ctx)
+    for c in sorted((m for m in ms if m.op in _M_ORDER), key=lambda m: _M_ORDER[m.op]):
+        _dispatch(it, ctx, c)
+    for c in gs:
+        if c not in early:
+            _dispatch(it, ctx, c)
+    if not ctx.axis_used and (any(k in ctx.words for k in AXES) or _full_circle(it, ctx)):
+        _motion(it, ctx)
+    for c in ms:
+        if c.op not in _M_ORDER:
+            _dispatch(it, ctx, c)
+
+
+def _full_circle(it: Interpreter, ctx: BlockContext) -> bool:
+    """An arc block with only centre words (``G02 I10``) is a full circle."""
+    return it.modal.motion in ("arc_cw", "arc_ccw") and not it.modal.cycle and any(
+        k in ctx.words for k in "IJK")
+
+
+def _dispatch(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
+    fn = HANDLERS.get(c.op)
+    if fn is None:
+        it.emit_error(dg.NOT_SUPPORTED, ctx.span, f"{c.name} ({c.summary.rstrip('.')}) is not supported yet")
+        if c.group not in ("non_modal",) and c.letter == "G":
+            ctx.axis_used = True
+        return
+    fn(it, ctx, c)
+    if c.letter == "G" and c.group not in ("non_modal", "hshp", "smoothing"):
+        it.set_modal(c.group, c)
+
+
+def _feed_speed_tool(it: Interpreter, ctx: BlockContext) -> None:
+    w = ctx.words.get("F")
+    if w is not None:
+        if w.value < 0:
+            it.emit_error(dg.NUMBER_RANGE, it.word_span(w), "F must not be negative")
+        else:
+            it.modal = replace(it.modal, feed=w.value)
+            ctx.out.append(FeedRate(it.word_span(w), it.frame, w.value * it.frame.units.mm_per_unit,
+                                    it.modal.per_rev))
+    w = ctx.words.get("S")
+    if w is not None and not any(c.op == "set_origin" for c in ctx.codes):
+        if w.value < 0:
+            it.emit_error(dg.NUMBER_RANGE, it.word_span(w), "S must not be negative")
+        else:
+            it.modal = replace(it.modal, spindle_rpm=w.value)
+            ctx.out.append(SpindleSpeed(it.word_span(w), it.frame, w.value, it.modal.css))
+    w = ctx.words.get("T")
+    if w is not None:
+        if w.value < 0 or w.value != int(w.value):
+            it.emit_error(dg.NUMBER_RANGE, it.word_span(w), "T must be a non-negative integer")
+        else:
+            it.modal = replace(it.modal, tool_selected=int(w.value))
+            ctx.out.append(SelectTool(it.word_span(w), it.frame, int(w.value)))
+
+
+# ---- positions ------------------------------------------------------------------------
+def target(it: Interpreter, ctx: BlockContext) -> Vec6:
+    """The block's end point in program coordinates (mm/deg)."""
+    p = list(it.pos)
+    machine = "machine_coords" in ctx.block_flags
+    off = it.frame.total_offset_mm
+    rd = it.reader
+    for i, letter in enumerate(AXES):
+        w = ctx.words.get(letter)
+        if w is None:
+            continue
+        v = rd.axis_value(w)
+        if machine:
+            p[i] = v - off[i] - (it.frame.tool_length_mm if i == 2 else 0.0)
+        elif it.modal.incremental:
+            p[i] += v
+        else:
+            p[i] = v
+    return (p[0], p[1], p[2], p[3], p[4], p[5])
+
+
+def _motion(it: Interpreter, ctx: BlockContext) -> None:
+    if it.modal.cycle:
+        fn = MOTIONS.get("cycle")
+        if fn is None:
+            it.emit_error(dg.NOT_SUPPORTED, ctx.span, "canned cycles are not supported yet")
+            return
+        fn(it, ctx, target(it, ctx))
+        return
+    fn = MOTIONS.get(it.modal.motion)
+    if fn is None:
+        it.emit_error(dg.NOT_SUPPORTED, ctx.span, f"motion mode {it.modal.motion} is not supported yet")
+        return
+    fn(it, ctx, target(it, ctx))
+
+
+def block_motion(it: Interpreter, ctx: BlockContext) -> Motion:
+    m = it.modal.path
+    if "exact_stop_once" in ctx.block_flags and m.mode is not PathMode.EXACT_STOP:
+        m = it.intern_motion(replace(m, mode=PathMode.EXACT_STOP))
+    return m
+
+
+def feed_mm_min(it: Interpreter, ctx: BlockContext) -> float | None:
+    f = it.modal.feed
+    if f is None:
+        d = it.dialect
+        f = d.default_feed_mm_rev if it.modal.per_rev else d.default_feed_mm_min
+        if f <= 0:
+            it.emit_error(dg.NO_FEED, ctx.span, "feed move without a feed rate (program F first)")
+            return None
+        if not it.modal.default_feed_noted:
+            it.modal = replace(it.modal, default_feed_noted=True)
+            it.sink.emit(dg.DEFAULT_FEED, ctx.span, f"no F programmed; using the {d.name} default F{f:g}")
+        return f * (1.0 if it.modal.per_rev else 1.0) * _feed_scale(it)
+    return f * _feed_scale(it)
+
+
+def _feed_scale(it: Interpreter) -> float:
+    scale = it.frame.units.mm_per_unit
+    if it.modal.per_rev:
+        scale *= it.modal.spindle_rpm
+    return scale
+
+
+def _rapid(it: Interpreter, ctx: BlockContext, end: Vec6) -> None:
+    ctx.out.append(Rapid(ctx.span, it.frame, it.pos, end, block_motion(it, ctx)))
+    it.pos = end
+
+
+def _linear(it: Interpreter, ctx: BlockContext, end: Vec6) -> None:
+    f = feed_mm_min(it, ctx)
+    if f is None:
+        return
+    ctx.out.append(Linear(ctx.span, it.frame, it.pos, end, f, block_motion(it, ctx)))
+    it.pos = end
+
+
+def _arc(it: Interpreter, ctx: BlockContext, end: Vec6, clockwise: bool) -> None:
+    plane = it.frame.plane
+    letters = {Plane.XY: ("I", "J"), Plane.ZX: ("K", "I"), Plane.YZ: ("J", "K")}[plane]
+    rw = ctx.words.get("R")
+    w1, w2 = ctx.words.get(letters[0]), ctx.words.get(letters[1])
+    start = it.pos
+    rd = it.reader
+    if rw is not None:
+        if w1 is not None or w2 is not None:
+            it.emit_error(dg.ARC_NO_CENTER, ctx.span, "an arc takes either I/J/K or R, not both")
+            return
+        tol = float(it.dialect.option("r_arc_semicircle_tolerance_mm", 0.001))
+        center, err = arcs.center_from_radius(start, end, plane, rd.length_mm(rw), clockwise, tol)
+        if err == "full":
+            it.emit_error(dg.ARC_R_FULL_CIRCLE, it.word_span(rw), "an R arc cannot be a full circle; use I/J/K")
+            return
+        if err == "small":
+            it.emit_error(dg.ARC_R_TOO_SMALL, it.word_span(rw),
+                          f"radius {abs(rd.length_mm(rw)):.4f} mm is less than half the chord")
+            return
+    elif w1 is None and w2 is None:
+        it.emit_error(dg.ARC_NO_CENTER, ctx.span, f"arc without a centre: give {letters[0]}/{letters[1]} or R")
+        return
+    else:
+        o1 = rd.length_mm(w1) if w1 is not None else 0.0
+        o2 = rd.length_mm(w2) if w2 is not None else 0.0
+        center = arcs.center_from_offsets(start, plane, o1, o2)
+    f = feed_mm_min(it, ctx)
+    if f is None:
+        return
+    turns = -1 if clockwise else 1
+    ctx.out.append(Arc(ctx.span, it.frame, start, end, center, turns, plane, f, block_motion(it, ctx)))
+    it.pos = end
+
+
+MOTIONS["rapid"] = _rapid
+MOTIONS["linear"] = _linear
+MOTIONS["arc_cw"] = lambda it, ctx, end: _arc(it, ctx, end, True)
+MOTIONS["arc_ccw"] = lambda it, ctx, end: _arc(it, ctx, end, False)
+
+
+# ---- G codes ------------------------------------------------------------------------
+@handler("rapid", "linear", "arc_cw", "arc_ccw")
+def _set_motion(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
+    it.modal = replace(it.modal, motion=c.op, cycle="")
+
+
+@handler("feed_per_min", "feed_per_rev")
+def _feed_mode(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
+    per_rev = c.op == "feed_per_rev"
+    if per_rev != it.modal.per_rev:
+        it.modal = replace(it.modal, per_rev=per_rev)
+        ctx.out.append(SetMode(ctx.span, it.frame, "feed_mode", "per_rev" if per_rev else "per_min"))
+
+
+@handler("dwell")
+def _dwell(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
+    ctx.axis_used = True
+    pw, xw = ctx.words.get("P"), ctx.words.get("X")
+    w = pw if pw is not None else xw
+    if w is None:
+        it.emit_error(dg.BAD_DWELL, ctx.span, f"{c.name} needs a time (X or P)")
+        return
+    if w is pw and pw.point and c.words.get("P") == "time_ms":
+        if it.dialect.option("g04_p_decimal", "truncate") == "error" or it.options.strict:
+            it.emit_error(dg.DECIMAL_NOT_ALLOWED, it.word_span(pw), "G04 P takes integer milliseconds")
+            return
+        it.sink.emit(dg.DECIMAL_P_DWELL, it.word_span(pw),
+                     f"G04 P{pw.value:g}: P is in integer milliseconds; read as {int(pw.value)} ms")
+        pw = replace(pw, value=float(int(pw.value)), point=False)
+        w = pw
+    seconds = it.reader.value(w, c.words.get(w.letter, "time"))
+    if seconds < 0:
+        it.emit_error(dg.BAD_DWELL, it.word_span(w), "dwell time must not be negative")
+        return
+    ctx.out.append(Dwell(ctx.span, it.frame, seconds))
+
+
+@handler("plane_xy", "plane_zx", "plane_yz")
+def _plane(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
+    plane = {"plane_xy": Plane.XY, "plane_zx": Plane.ZX, "plane_yz": Plane.YZ}[c.op]
+    if plane is not it.frame.plane:
+        it.set_frame(replace(it.frame, plane=plane))
+        ctx.out.append(SetMode(ctx.span, it.frame, "plane", plane))
+
+
+@handler("inch", "metric")
+def _units(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
+    units = Units.INCH if c.op == "inch" else Units.MM
+    if units is not it.frame.units:
+        it.set_frame(replace(it.frame, units=units))
+        ctx.out.append(SetMode(ctx.span, it.frame, "units", units))
+
+
+@handler("comp_off")
+def _comp_off(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
+    from cncc.ir import CompSide
+
+    if it.frame.comp_side is not CompSide.OFF:
+        it.set_frame(replace(it.frame, comp_side=CompSide.OFF, comp_radius_mm=0.0, comp_index=0))
+
+
+@handler("length_plus", "length_minus", "length_off")
+def _length(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
+    if c.op == "length_off":
+        value, index = 0.0, 0
+    else:
+        hw = ctx.words.get("H")
+        index = int(hw.value) if hw is not None else it.frame.tool_length_index
+        if hw is not None and (hw.value < 0 or hw.value != int(hw.value)):
+            it.emit_error(dg.BAD_OFFSET_INDEX, it.word_span(hw), "H must be a non-negative integer")
+            return
+        value = it.options.tool_lengths_mm.get(index, 0.0)
+        if c.op == "length_minus":
+            value = -value
+    if value != it.frame.tool_length_mm or index != it.frame.tool_length_index:
+        it.set_frame(replace(it.frame, tool_length_mm=value, tool_length_index=index))
+        ctx.out.append(SetMode(ctx.span, it.frame, "tool_length_offset", value))
+
+
+@handler("work")
+def _work(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
+    off = it.options.work_offsets_mm.get(c.index, (0.0,) * 6)
+    if c.index != it.frame.work_index or off != it.frame.work_offset_mm:
+        it.set_frame(replace(it.frame, work_index=c.index, work_offset_mm=off))  # type: ignore[arg-type]
+        ctx.out.append(SetMode(ctx.span, it.frame, "g5x_offset", c.index))
+
+
+@handler("exact_stop_mode", "continuous_mode", "curve_mode", "tapping_mode")
+def _path_mode(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
+    mode = PathMode.EXACT_STOP if c.op == "exact_stop_mode" else PathMode.CONTINUOUS
+    if mode is not it.modal.path.mode:
+        it.modal = replace(it.modal, path=it.intern_motion(replace(it.modal.path, mode=mode)))
+        ctx.out.append(SetMode(ctx.span, it.frame, "path_mode", mode))
+
+
+@handler("exact_stop_once")
+def _exact_once(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
+    ctx.block_flags.add("exact_stop_once")
+
+
+@handler("absolute", "incremental")
+def _distance(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
+    it.modal = replace(it.modal, incremental=c.op == "incremental")
+
+
+@handler("return_initial", "return_r")
+def _return_level(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
+    it.modal = replace(it.modal, cycle_return_initial=c.op == "return_initial")
+
+
+@handler("css_on", "css_off")
+def _css(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
+    it.modal = replace(it.modal, css=c.op == "css_on")
+
+
+@handler("polar_off", "scale_off", "mirror_off", "rotate_off", "modal_call_off", "cycle_off")
+def _off_when_off(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
+    """Cancel codes are no-ops while the feature they cancel is not in force."""
+    if c.op == "cycle_off":
+        it.modal = replace(it.modal, cycle="")
+    if c.op == "mirror_off":
+        ctx.axis_used = True
+
+
+@handler("machine_coords")
+def _g53(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
+    if it.modal.incremental:
+        it.sink.emit(dg.G53_INCREMENTAL, ctx.span, "G53 is ignored in incremental mode (G91)")
+        ctx.axis_used = True
+        return
+    ctx.block_flags.add("machine_coords")
+
+
+@handler("set_origin")
+def _g92(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
+    ctx.axis_used = True
+    sw = ctx.words.get("S")
+    if sw is not None:
+        it.modal = replace(it.modal, spindle_clamp_rpm=sw.value)
+    shift = list(it.frame.g92_offset_mm)
+    changed = False
+    for i, letter in enumerate(AXES):
+        w = ctx.words.get(letter)
+        if w is None:
+            continue
+        new_pos = it.reader.axis_value(w)
+        shift[i] += it.pos[i] - new_pos
+        changed = True
+    if changed:
+        it.set_frame(replace(it.frame, g92_offset_mm=tuple(shift)))  # type: ignore[arg-type]
+        ctx.out.append(SetMode(ctx.span, it.frame, "g92_offset", it.frame.g92_offset_mm))
+
+
+@handler("local_offset")
+def _g52(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
+    ctx.axis_used = True
+    local = list(it.frame.local_offset_mm)
+    for i, letter in enumerate(AXES):
+        w = ctx.words.get(letter)
+        if w is not None:
+            local[i] = it.reader.axis_value(w)
+    new = tuple(local)
+    if new != it.frame.local_offset_mm:
+        it.set_frame(replace(it.frame, local_offset_mm=new))  # type: ignore[arg-type]
+        ctx.out.append(SetMode(ctx.span, it.frame, "g52_offset", new))
+
+
+def _reference_program(it: Interpreter, index: int) -> Vec6 | None:
+    refs = it.options.reference_mm
+    if index - 1 >= len(refs):
+        return None
+    ref, off = refs[index - 1], it.frame.total_offset_mm
+    z_tool = it.frame.tool_length_mm
+    return tuple(ref[i] - off[i] - (z_tool if i == 2 else 0.0) for i in range(6))  # type: ignore[return-value]
+
+
+def _axes_named(ctx: BlockContext) -> list[int]:
+    return [i for i, letter in enumerate(AXES) if letter in ctx.words]
+
+
+def _home_via(it: Interpreter, ctx: BlockContext, c: CodeDef, index: int) -> None:
+    ctx.axis_used = True
+    named = _axes_named(ctx)
+    if not named:
+        return
+    mid = target(it, ctx)
+    ref = _reference_program(it, index)
+    if ref is None:
+        it.emit_error(dg.BAD_OFFSET_INDEX, ctx.span, f"the machine has no reference position {index}")
+        return
+    ctx.out.append(Rapid(ctx.span, it.frame, it.pos, mid, block_motion(it, ctx), origin=c.name))
+    it.pos = mid
+    end = tuple(ref[i] if i in named else mid[i] for i in range(6))
+    ctx.out.append(Rapid(ctx.span, it.frame, mid, end, block_motion(it, ctx), origin=c.name))  # type: ignore[arg-type]
+    it.pos = end  # type: ignore[assignment]
+    flags = tuple(i in named for i in range(6))
+    from cncc.frontend.modal import Reference
+
+    it.reference = Reference(mid, flags)
+
+
+@handler("home")
+def _g28(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
+    _home_via(it, ctx, c, 1)
+
+
+@handler("home2")
+def _g30(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
+    pw = ctx.words.get("P")
+    index = int(pw.value) if pw is not None else 2
+    if index < 2 or index > 4:
+        it.emit_error(dg.BAD_OFFSET_INDEX, ctx.span, f"G30 P{index}: reference positions are P2 to P4")
+        ctx.axis_used = True
+        return
+    _home_via(it, ctx, c, index)
+
+
+@handler("home_return")
+def _g29(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
+    ctx.axis_used = True
+    named = _axes_named(ctx)
+    if not named:
+        return
+    mid = tuple(it.reference.point[i] if i in named else it.pos[i] for i in range(6))
+    ctx.out.append(Rapid(ctx.span, it.frame, it.pos, mid, block_motion(it, ctx), origin=c.name))  # type: ignore[arg-type]
+    it.pos = mid  # type: ignore[assignment]
+    end = target(it, ctx)  # incremental words are taken from the intermediate point
+    ctx.out.append(Rapid(ctx.span, it.frame, it.pos, end, block_motion(it, ctx), origin=c.name))
+    it.pos = end
+
+
+# ---- M codes ------------------------------------------------------------------------
+@handler("program_stop", "optional_stop", "program_end", "program_end_rewind")
+def _stop(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
+    kind = {"program_stop": StopKind.PROGRAM_STOP, "optional_stop": StopKind.OPTIONAL_STOP,
+            "program_end": StopKind.PROGRAM_END, "program_end_rewind": StopKind.END_REWIND}[c.op]
+    ctx.out.append(Stop(ctx.span, it.frame, kind))
+    if kind in (StopKind.PROGRAM_END, StopKind.END_REWIND):
+        it.ended = True
+
+
+@handler("spindle_cw", "spindle_ccw", "spindle_off", "spindle_orient")
+def _spindle(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
+    state = {"spindle_cw": SpindleState.CW, "spindle_ccw": SpindleState.CCW, "spindle_off": SpindleState.OFF,
+             "spindle_orient": SpindleState.ORIENT}[c.op]
+    ctx.out.append(Spindle(ctx.span, it.frame, state, it.modal.spindle_rpm))
+
+
+@handler("coolant_flood", "coolant_mist", "coolant_off", "coolant_mist_off")
+def _coolant(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
+    state = {"coolant_flood": CoolantState.FLOOD, "coolant_mist": CoolantState.MIST}.get(c.op, CoolantState.OFF)
+    ctx.out.append(Coolant(ctx.span, it.frame, state))
+
+
+@handler("tool_change")
+def _tool_change(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
+    it.modal = replace(it.modal, tool_loaded=it.modal.tool_selected)
+    ctx.out.append(ToolChange(ctx.span, it.frame, it.modal.tool_selected))
