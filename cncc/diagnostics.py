@@ -79,6 +79,14 @@ G53_INCREMENTAL = _define("W0216", W, "G53 in incremental mode is ignored")
 AFTER_END = _define("N0217", N, "blocks after the program end are not executed")
 DECIMAL_P_DWELL = _define("W0218", W, "G04 P takes integer milliseconds; the fraction is dropped")
 
+# --- E07xx: pulses -------------------------------------------------------------
+STEP_RATE = _define("E0701", E, "an axis would step faster than its maximum step rate")
+PULSE_SPACING = _define("E0702", E, "two pulses of an axis closer than the minimum spacing (twice the pulse width)")
+SOFT_LIMIT = _define("E0703", E, "the trajectory crosses an axis soft limit")
+BAD_PITCH_TABLE = _define("E0704", E, "a pitch-error table would make the axis move backwards; the table is ignored")
+DIR_SETUP_DELAY = _define("W0705", W, "a step was delayed to respect the direction set-up time")
+AXIS_NOT_IN_MACHINE = _define("W0706", W, "a trajectory axis is not in the machine model; default step output used")
+
 # --- E09xx: driver and files --------------------------------------------------
 CANNOT_READ = _define("E0901", E, "an input file cannot be read")
 CANNOT_WRITE = _define("E0902", E, "an output file cannot be written")
