@@ -79,6 +79,9 @@ G53_INCREMENTAL = _define("W0216", W, "G53 in incremental mode is ignored")
 AFTER_END = _define("N0217", N, "blocks after the program end are not executed")
 DECIMAL_P_DWELL = _define("W0218", W, "G04 P takes integer milliseconds; the fraction is dropped")
 
+# --- E05xx: frames and compensation ------------------------------------------------
+ARC_REPAIRED = _define("W0511", W, "an arc's centre was moved to make its radii agree")
+
 # --- E07xx: pulses -------------------------------------------------------------
 STEP_RATE = _define("E0701", E, "an axis would step faster than its maximum step rate")
 PULSE_SPACING = _define("E0702", E, "two pulses of an axis closer than the minimum spacing (twice the pulse width)")

@@ -1,0 +1,5 @@
+import sys
+
+from cncc.cli import main
+
+sys.exit(main())

@@ -1,0 +1,129 @@
+"""The gcc-like command line: ``cncc [options] file...`` and ``cncc lsp``."""
+
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+from collections.abc import Sequence
+from typing import Any
+
+from cncc import __version__
+
+USAGE = "cncc [options] file...   |   cncc lsp"
+
+
+def _parser() -> argparse.ArgumentParser:
+    p = argparse.ArgumentParser(
+        prog="cncc", usage=USAGE,
+        description="Compile CNC programs: read a G-code dialect, run the passes, emit canon traces, "
+                    "G-code, timing reports or step pulses.",
+        epilog="Exit status: 0 success, 1 errors in the input, 2 bad command line, 4 internal error.")
+    p.add_argument("inputs", nargs="*", metavar="file", help="program files ('-' for standard input)")
+    p.add_argument("-x", "--dialect", help="input dialect (default: syntec)")
+    p.add_argument("-t", "--target", help="target dialect for --emit=gcode (default: the input dialect)")
+    p.add_argument("-m", "--machine", default="generic-mill", help="machine model name or TOML file")
+    p.add_argument("--emit", default="canon", help="canon | ir | gcode | timing | pulses | none (default: canon)")
+    p.add_argument("-o", dest="output", help="output file ('-' for standard output)")
+    p.add_argument("-O", dest="opt_level", type=int, choices=range(4), default=2, metavar="LEVEL",
+                   help="planner level: -O0 nominal, -O1 trapezoid, -O2 jerk-limited (default), -O3 optimal")
+    p.add_argument("-f", dest="flags", action="append", default=[], metavar="FLAG",
+                   help="-fsyntax-only, -fstrict, -frepair-arcs, -fno-block-delete, or a dialect option "
+                        "-fNAME=VALUE (e.g. -frapid_type=independent)")
+    p.add_argument("-W", dest="warnings", action="append", default=[], metavar="WARN",
+                   help="-Werror turns warnings into errors")
+    p.add_argument("--offsets", dest="offsets_file", help="work offsets table (TOML)")
+    p.add_argument("--tools", dest="tools_file", help="tool table (TOML or LinuxCNC .tbl)")
+    p.add_argument("--report-format", default="text", choices=["text", "json"], help="timing report format")
+    p.add_argument("--version", action="version", version=f"cncc {__version__}")
+    return p
+
+
+def _value(text: str) -> Any:
+    low = text.lower()
+    if low in ("true", "on", "yes"):
+        return True
+    if low in ("false", "off", "no"):
+        return False
+    try:
+        return int(text)
+    except ValueError:
+        pass
+    try:
+        return float(text)
+    except ValueError:
+        return text
+
+
+def build_options(ns: argparse.Namespace, error: Any) -> Any:
+    from cncc.driver import Options
+
+    opts = Options(inputs=list(ns.inputs), dialect=ns.dialect, target=ns.target, machine=ns.machine,
+                   emit=ns.emit, output=ns.output, opt_level=ns.opt_level, offsets_file=ns.offsets_file,
+                   tools_file=ns.tools_file, report_format=ns.report_format)
+    for flag in ns.flags:
+        if flag == "syntax-only":
+            opts.syntax_only = True
+        elif flag == "strict":
+            opts.strict = True
+        elif flag == "repair-arcs":
+            opts.repair_arcs = True
+        elif flag == "no-block-delete":
+            opts.block_delete = False
+        elif "=" in flag:
+            key, _, val = flag.partition("=")
+            opts.dialect_options[key.replace("-", "_")] = _value(val)
+        else:
+            error(f"unknown flag -f{flag}")
+    for w in ns.warnings:
+        if w == "error":
+            opts.werror = True
+        else:
+            error(f"unknown warning option -W{w}")
+    return opts
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    args = list(sys.argv[1:] if argv is None else argv)
+    if args[:1] == ["lsp"]:
+        from cncc.lsp import serve
+
+        return serve(args[1:])
+    parser = _parser()
+    ns = parser.parse_args(args)
+    opts = build_options(ns, parser.error)
+    try:
+        return run(opts)
+    except KeyboardInterrupt:
+        return 130
+    except Exception as exc:  # an internal error is a bug: say so without a traceback
+        if os.environ.get("CNCC_DEBUG"):
+            raise
+        sys.stderr.write(f"cncc: internal compiler error: {type(exc).__name__}: {exc}\n"
+                         "cncc: please report this with the input; CNCC_DEBUG=1 shows the traceback\n")
+        return 4
+
+
+def run(opts: Any) -> int:
+    from cncc.driver import compile_files, write_output
+    from cncc.render import render
+
+    result = compile_files(opts)
+    if not opts.syntax_only and not result.sink.has_errors:
+        write_output(result.output, opts.output, opts.inputs, result.sink)
+    elif not opts.syntax_only and result.output and opts.output in (None, "-"):
+        write_output(result.output, opts.output, opts.inputs, result.sink)
+    err = sys.stderr
+    for d in result.sink:
+        for chunk in render(d, result.sources):
+            err.write(chunk)
+    if result.sink.dropped:
+        err.write(f"cncc: {result.sink.dropped} more diagnostics not shown\n")
+    n_err = result.sink.error_count
+    if n_err:
+        err.write(f"{n_err} error{'s' if n_err != 1 else ''} generated.\n")
+    return 1 if result.sink.has_errors else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,250 @@
+"""The driver: builds the pipeline from options — the one place that knows every stage.
+
+``compile_files(options)`` reads the inputs, lowers them with the front end, runs
+the passes, and hands the result to the backend named by ``options.emit``.  It
+never raises on bad input: everything goes into the :class:`DiagnosticSink`.
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+import tempfile
+from collections.abc import Iterable, Iterator
+from dataclasses import dataclass, field
+from typing import Any, TextIO
+
+from cncc import diagnostics as dg
+from cncc.diagnostics import DiagnosticSink
+from cncc.dialects import Dialect, DialectError, load_dialect
+from cncc.ir import Command, Frame, Units, Vec6
+from cncc.ir.machine import Axis, MachineModel
+from cncc.source import NO_SPAN, SourceFile, SourceMap, Span
+
+EMIT_KINDS = ("canon", "ir", "gcode", "timing", "pulses", "none")
+DEFAULT_DIALECT = "syntec"
+DEFAULT_MACHINE = "generic-mill"
+
+
+@dataclass(slots=True)
+class Options:
+    inputs: list[str] = field(default_factory=list)
+    dialect: str | None = None
+    target: str | None = None
+    machine: str = DEFAULT_MACHINE
+    emit: str = "canon"
+    output: str | None = None
+    syntax_only: bool = False
+    werror: bool = False
+    strict: bool = False
+    opt_level: int = 2
+    offsets_file: str | None = None
+    tools_file: str | None = None
+    dialect_options: dict[str, Any] = field(default_factory=dict)
+    block_delete: bool = True
+    repair_arcs: bool = False
+    report_format: str = "text"
+
+
+@dataclass(slots=True)
+class Result:
+    sink: DiagnosticSink
+    sources: SourceMap
+    output: str = ""
+
+    @property
+    def ok(self) -> bool:
+        return not self.sink.has_errors
+
+
+# ---- inputs --------------------------------------------------------------------------
+def decode(data: bytes) -> str:
+    """Program bytes to text: UTF-8, else Latin-1 (every byte maps to a character)."""
+    try:
+        return data.decode("utf-8")
+    except UnicodeDecodeError:
+        return data.decode("latin-1")
+
+
+def read_input(path: str, sources: SourceMap, sink: DiagnosticSink, stdin: TextIO | None = None) -> SourceFile | None:
+    if path == "-":
+        stream = stdin if stdin is not None else sys.stdin
+        buf = getattr(stream, "buffer", None)
+        text = decode(buf.read()) if buf is not None else stream.read()
+        return sources.add("<stdin>", text)
+    try:
+        with open(path, "rb") as fh:
+            data = fh.read()
+    except OSError as exc:
+        sink.emit(dg.CANNOT_READ, NO_SPAN, f"cannot read {path}: {exc.strerror or exc}")
+        return None
+    return sources.add(path, decode(data))
+
+
+def resolve_dialect(opts: Options, sink: DiagnosticSink) -> Dialect | None:
+    name = opts.dialect or DEFAULT_DIALECT
+    try:
+        dialect = load_dialect(name)
+        if opts.dialect_options:
+            dialect = dialect.with_options(opts.dialect_options)
+    except DialectError as exc:
+        sink.emit(dg.BAD_OPTION, NO_SPAN, str(exc))
+        return None
+    return dialect
+
+
+def resolve_machine(name: str, sink: DiagnosticSink) -> MachineModel | None:
+    try:
+        from cncc import machines  # data + loader (may be absent in minimal builds)
+    except ImportError:
+        return default_machine()
+    loader = getattr(machines, "load_machine", None)
+    if loader is None:
+        return default_machine()
+    try:
+        model: MachineModel = loader(name)
+    except (ValueError, OSError) as exc:
+        sink.emit(dg.BAD_OPTION, NO_SPAN, f"machine {name!r}: {exc}")
+        return None
+    return model
+
+
+def default_machine() -> MachineModel:
+    return MachineModel("generic-mill", tuple(Axis(a) for a in "XYZ"))
+
+
+# ---- offsets and tools -----------------------------------------------------------------
+def load_tables(opts: Options, sink: DiagnosticSink) -> tuple[dict[int, Vec6], dict[int, float], dict[int, float]]:
+    from cncc import tables
+
+    work: dict[int, Vec6] = {}
+    lengths: dict[int, float] = {}
+    radii: dict[int, float] = {}
+    if opts.offsets_file:
+        try:
+            work = tables.read_offsets(opts.offsets_file)
+        except tables.TableError as exc:
+            sink.emit(dg.BAD_OFFSETS_FILE, NO_SPAN, str(exc))
+    if opts.tools_file:
+        try:
+            lengths, radii = tables.read_tools(opts.tools_file)
+        except tables.TableError as exc:
+            sink.emit(dg.BAD_OFFSETS_FILE, NO_SPAN, str(exc))
+    return work, lengths, radii
+
+
+# ---- pipeline ---------------------------------------------------------------------------
+def front_end(src: SourceFile, dialect: Dialect, machine: MachineModel, opts: Options,
+              sink: DiagnosticSink) -> Iterator[Command]:
+    from cncc.frontend import InterpOptions, lower
+
+    work, lengths, radii = load_tables(opts, sink)
+    refs = tuple(tuple(r) + (0.0,) * (6 - len(r)) for r in machine.reference_positions_mm) or ((0.0,) * 6,)
+    iopts = InterpOptions(work_offsets_mm=work, tool_lengths_mm=lengths, tool_radii_mm=radii,
+                          reference_mm=refs, block_delete=opts.block_delete, strict=opts.strict)  # type: ignore[arg-type]
+    return lower(src, dialect, sink, iopts)
+
+
+def path_passes(cmds: Iterable[Command], dialect: Dialect, machine: MachineModel, opts: Options,
+                sink: DiagnosticSink) -> Iterator[Command]:
+    """The passes that change the programmed path (before lowering to machine coordinates)."""
+    from cncc.passes import PassContext, run_pipeline
+    from cncc.passes.arc_check import ArcCheck
+
+    ctx = PassContext(sink=sink, dialect=dialect, machine=machine)
+    tol_abs = float(dialect.option("arc_radius_tolerance_mm", ArcCheck.abs_tol_mm))
+    tol_rel = float(dialect.option("arc_radius_tolerance_rel", ArcCheck.rel_tol))
+    passes = [ArcCheck(abs_tol_mm=max(tol_abs, ArcCheck.abs_tol_mm), rel_tol=tol_rel, repair=opts.repair_arcs)]
+    return run_pipeline(passes, cmds, ctx)
+
+
+def compile_files(opts: Options, stdin: TextIO | None = None) -> Result:
+    sink = DiagnosticSink(werror=opts.werror)
+    sources = SourceMap()
+    result = Result(sink, sources)
+    if opts.emit not in EMIT_KINDS:
+        sink.emit(dg.BAD_OPTION, NO_SPAN, f"unknown --emit={opts.emit} (choose from {', '.join(EMIT_KINDS)})")
+        return result
+    dialect = resolve_dialect(opts, sink)
+    machine = resolve_machine(opts.machine, sink)
+    if dialect is None or machine is None:
+        return result
+    chunks: list[str] = []
+    for path in opts.inputs or ["-"]:
+        src = read_input(path, sources, sink, stdin)
+        if src is None:
+            continue
+        if not src.text.strip():
+            sink.emit(dg.EMPTY_PROGRAM, Span(src.source_id, 0, 0), "the program contains no blocks")
+        cmds = path_passes(front_end(src, dialect, machine, opts, sink), dialect, machine, opts, sink)
+        if opts.syntax_only:
+            for _ in cmds:
+                pass
+            continue
+        chunks.extend(run_backend(cmds, src, sources, dialect, machine, opts, sink))
+    result.output = "".join(chunks)
+    return result
+
+
+def run_backend(cmds: Iterator[Command], src: SourceFile, sources: SourceMap, dialect: Dialect,
+                machine: MachineModel, opts: Options, sink: DiagnosticSink) -> Iterator[str]:
+    frame0 = Frame(units=Units.INCH if dialect.default_units == "inch" else Units.MM)
+    if opts.emit == "canon":
+        from cncc.backends.canon import emit_canon
+
+        return emit_canon(cmds, frame0)
+    if opts.emit == "ir":
+        from cncc.backends.irdump import dump_ir
+
+        return dump_ir(cmds, sources)
+    if opts.emit == "gcode":
+        from cncc.backends.gcode import emit_gcode
+
+        target = dialect
+        if opts.target:
+            t = resolve_dialect(Options(dialect=opts.target), sink)
+            if t is None:
+                return iter(())
+            target = t
+        return emit_gcode(cmds, target)
+    if opts.emit == "timing":
+        from cncc.backends.report import timing_report
+
+        return timing_report(list(cmds), src, sources, machine, opts.opt_level, opts.report_format, sink)
+    if opts.emit == "none":
+        for _ in cmds:
+            pass
+        return iter(())
+    sink.emit(dg.NOT_SUPPORTED, NO_SPAN, f"--emit={opts.emit} is not available yet")
+    for _ in cmds:
+        pass
+    return iter(())
+
+
+# ---- outputs ---------------------------------------------------------------------------------
+def write_output(text: str, path: str | None, inputs: list[str], sink: DiagnosticSink,
+                 stdout: TextIO | None = None) -> bool:
+    """Write ``text`` to ``path`` atomically (``-``/None: stdout); never over an input."""
+    if path is None or path == "-":
+        (stdout or sys.stdout).write(text)
+        return True
+    real = os.path.realpath(path)
+    for inp in inputs:
+        if inp != "-" and os.path.exists(inp) and os.path.realpath(inp) == real:
+            sink.emit(dg.OUTPUT_IS_INPUT, NO_SPAN, f"refusing to overwrite the input file {path}")
+            return False
+    folder = os.path.dirname(real) or "."
+    try:
+        fd, tmp = tempfile.mkstemp(prefix=".cncc-", suffix=".tmp", dir=folder)
+        try:
+            with os.fdopen(fd, "w", encoding="utf-8", newline="\n") as fh:
+                fh.write(text)
+            os.replace(tmp, real)
+        except BaseException:
+            if os.path.exists(tmp):
+                os.unlink(tmp)
+            raise
+    except OSError as exc:
+        sink.emit(dg.CANNOT_WRITE, NO_SPAN, f"cannot write {path}: {exc.strerror or exc}")
+        return False
+    return True
