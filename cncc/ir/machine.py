@@ -36,10 +36,14 @@ class StepOutput:
     direction_invert: bool = False
     backlash_mm: float = 0.0
     backlash_mode: BacklashMode = BacklashMode.NONE
-    reversal_delay_s: float = 0.0
+    reversal_delay_s: float = 0.0  # SZGH Axis P68: pause inserted when the axis reverses
+    backlash_a_speed_mm_min: float = 1_000.0  # mode A: constant compensation speed (SZGH: < 1000)
+    backlash_speed_mm_min: float = 3_000.0  # mode B: top speed (SZGH Speed P48)
+    backlash_start_speed_mm_min: float = 500.0  # mode B: start speed (SZGH Speed P48-1)
+    backlash_accel_mm_s2: float = 1_000.0  # mode B: accel (SZGH P48-2, 60000 mm/min/s)
     pitch_table_mm: tuple[tuple[float, float], ...] = ()  # (position, correction)
     max_step_rate_hz: float = 1_000_000.0
-    pulse_width_ns: int = 2_000
+    pulse_width_ns: int = 2_000  # step high time; minimum spacing is twice this
     dir_setup_ns: int = 5_000
 
 
