@@ -82,6 +82,21 @@ DECIMAL_P_DWELL = _define("W0218", W, "G04 P takes integer milliseconds; the fra
 # --- E05xx: frames and compensation ------------------------------------------------
 ARC_REPAIRED = _define("W0511", W, "an arc's centre was moved to make its radii agree")
 
+# --- E06xx: machine models, planning, verification --------------------------------
+BAD_MACHINE = _define("E0601", E, "a machine model file or override is malformed (the message names the key)")
+AXIS_NOT_ON_MACHINE = _define("E0602", E, "a move commands an axis the machine model does not have")
+FEED_CLAMPED = _define("N0603", N, "the programmed feed is above the machine's feed cap and is clamped")
+BAD_FEED = _define("E0604", E, "a feed move has a zero or negative feed rate")
+PLAN_FALLBACK = _define("W0605", W, "the planner could not solve a window optimally and used a safer profile")
+VERIFY_VELOCITY = _define("E0610", E, "verify: an axis velocity exceeds its limit")
+VERIFY_ACCEL = _define("E0611", E, "verify: an axis acceleration exceeds its limit")
+VERIFY_JERK = _define("E0612", E, "verify: an axis jerk exceeds its limit")
+VERIFY_PATH = _define("E0613", E, "verify: the trajectory leaves the programmed path by more than the tolerance")
+VERIFY_FEED = _define("E0614", E, "verify: the path speed exceeds the programmed feed")
+VERIFY_SOFT_LIMIT = _define("E0615", E, "verify: an axis leaves its soft limits")
+VERIFY_CONTINUITY = _define("E0616", E, "verify: the trajectory jumps in position or time between phases")
+VERIFY_CORNER = _define("E0617", E, "verify: a velocity step at a phase boundary exceeds the corner rule")
+
 # --- E07xx: pulses -------------------------------------------------------------
 STEP_RATE = _define("E0701", E, "an axis would step faster than its maximum step rate")
 PULSE_SPACING = _define("E0702", E, "two pulses of an axis closer than the minimum spacing (twice the pulse width)")

@@ -88,6 +88,10 @@ class MachineModel:
     tool_change_s: float = 5.0
     spindle_ramp_s: float = 1.0
     optional_stop_s: float = 0.0
+    start_speed_mm_min: float = 0.0  # path take-off speed, no ramp below it (SZGH Speed P11)
+    max_speed_step_mm_min: float = 0.0  # path speed step done instantly (SZGH Speed P12)
+    mst_stops_motion: bool = False  # M/S/T blocks (coolant, S, T, aux M) stop the path (SZGH)
+    arc_tolerance_mm: float = 0.001  # chord sagitta allowed when arcs become chords
     reference_positions_mm: tuple[tuple[float, ...], ...] = ((0.0, 0.0, 0.0, 0.0, 0.0, 0.0),)
     notes: str = ""
 
