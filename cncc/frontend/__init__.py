@@ -11,6 +11,7 @@ from collections.abc import Iterator
 
 from cncc.diagnostics import DiagnosticSink
 from cncc.dialects import Dialect
+from cncc.frontend.fastpath import is_straight_line, lower_straight
 from cncc.frontend.interp import InterpOptions, Interpreter
 from cncc.frontend.parser import ParseOptions, Parser
 from cncc.ir import Command
@@ -23,6 +24,8 @@ def lower(src: SourceFile, dialect: Dialect, sink: DiagnosticSink,
           options: InterpOptions | None = None) -> Iterator[Command]:
     """Parse and interpret ``src``; yield IR commands in program order."""
     opts = options or InterpOptions()
+    if is_straight_line(src.text):
+        return lower_straight(src, dialect, sink, opts)
     parser = Parser(dialect, sink, ParseOptions(strict=opts.strict))
     interp = Interpreter(dialect, sink, src.source_id, opts)
     return interp.run(parser.blocks(src))

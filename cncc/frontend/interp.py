@@ -107,6 +107,7 @@ class Interpreter:
         self.pos: Vec6 = self.options.start_mm
         self.reference = Reference()
         self.ended = False
+        self.group_codes: dict[str, str] = {}
         self._end_noted = False
         self._motion_cache: dict[Motion, Motion] = {}
         self._apply_defaults()
@@ -122,7 +123,7 @@ class Interpreter:
                 continue
             ctx = BlockContext(Block(0, 0, 0, ()), Span(self.source_id, 0, 0), {}, [cdef], scratch)
             self.handlers[cdef.op](self, ctx, cdef)
-        self.modal = _replace(self.modal, codes=tuple(sorted(self.dialect.defaults.items())))
+        self.group_codes = dict(self.dialect.defaults)
 
     # ---- main entry points
     def run(self, blocks: Iterable[Block]) -> Iterator[Command]:
@@ -184,9 +185,8 @@ class Interpreter:
         self.frame = frame
 
     def set_modal(self, group: str, code: CodeDef) -> None:
-        codes = dict(self.modal.codes)
-        codes[group] = code.name
-        self.modal = _replace(self.modal, codes=tuple(sorted(codes.items())))
+        """Record the code now in force in ``group`` (for #4001... and hover texts)."""
+        self.group_codes[group] = code.name
 
     # ---- block classification
     def _classify(self, block: Block, span: Span, out: list[Command]) -> BlockContext | None:
@@ -254,12 +254,6 @@ class Interpreter:
             self.sink.emit(dg.UNKNOWN_G if w.letter == "G" else dg.UNKNOWN_M, self.word_span(w),
                            f"{code_name(w.letter, tenths)} is not a {self.dialect.name} code")
         return cdef
-
-
-def _replace(state: ModalState, **changes: object) -> ModalState:
-    from dataclasses import replace
-
-    return replace(state, **changes)  # type: ignore[arg-type]
 
 
 def _m_group(op: str) -> str:

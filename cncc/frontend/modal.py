@@ -18,11 +18,21 @@ class ModalState:
     tool_selected: int = 0
     tool_loaded: int = 0
     path: Motion = field(default_factory=Motion)
-    codes: tuple[tuple[str, str], ...] = ()  # (group, code name) in force, for #4001.. and hover
     cycle_return_initial: bool = True
     css: bool = False
     spindle_clamp_rpm: float = 0.0  # G92 S
     default_feed_noted: bool = False
+
+
+    def with_(self, **changes: object) -> ModalState:
+        """A copy with ``changes`` (several times faster than ``dataclasses.replace``)."""
+        o = object.__new__(ModalState)
+        for name, setter in _SETTERS:
+            setter(o, changes[name] if name in changes else getattr(self, name))
+        return o
+
+
+_SETTERS = tuple((name, getattr(ModalState, name).__set__) for name in ModalState.__dataclass_fields__)
 
 
 @dataclass(frozen=True, slots=True)

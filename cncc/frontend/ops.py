@@ -107,7 +107,7 @@ def _feed_speed_tool(it: Interpreter, ctx: BlockContext) -> None:
         if w.value < 0:
             it.emit_error(dg.NUMBER_RANGE, it.word_span(w), "F must not be negative")
         else:
-            it.modal = replace(it.modal, feed=w.value)
+            it.modal = it.modal.with_(feed=w.value)
             ctx.out.append(FeedRate(it.word_span(w), it.frame, w.value * it.frame.units.mm_per_unit,
                                     it.modal.per_rev))
     w = ctx.words.get("S")
@@ -115,14 +115,14 @@ def _feed_speed_tool(it: Interpreter, ctx: BlockContext) -> None:
         if w.value < 0:
             it.emit_error(dg.NUMBER_RANGE, it.word_span(w), "S must not be negative")
         else:
-            it.modal = replace(it.modal, spindle_rpm=w.value)
+            it.modal = it.modal.with_(spindle_rpm=w.value)
             ctx.out.append(SpindleSpeed(it.word_span(w), it.frame, w.value, it.modal.css))
     w = ctx.words.get("T")
     if w is not None:
         if w.value < 0 or w.value != int(w.value):
             it.emit_error(dg.NUMBER_RANGE, it.word_span(w), "T must be a non-negative integer")
         else:
-            it.modal = replace(it.modal, tool_selected=int(w.value))
+            it.modal = it.modal.with_(tool_selected=int(w.value))
             ctx.out.append(SelectTool(it.word_span(w), it.frame, int(w.value)))
 
 
@@ -178,7 +178,7 @@ def feed_mm_min(it: Interpreter, ctx: BlockContext) -> float | None:
             it.emit_error(dg.NO_FEED, ctx.span, "feed move without a feed rate (program F first)")
             return None
         if not it.modal.default_feed_noted:
-            it.modal = replace(it.modal, default_feed_noted=True)
+            it.modal = it.modal.with_(default_feed_noted=True)
             it.sink.emit(dg.DEFAULT_FEED, ctx.span, f"no F programmed; using the {d.name} default F{f:g}")
         return f * (1.0 if it.modal.per_rev else 1.0) * _feed_scale(it)
     return f * _feed_scale(it)
@@ -234,9 +234,29 @@ def _arc(it: Interpreter, ctx: BlockContext, end: Vec6, clockwise: bool) -> None
     f = feed_mm_min(it, ctx)
     if f is None:
         return
+    if it.dialect.option("helix_feed", "projection") == "projection" and end[plane.normal] != start[plane.normal]:
+        f = _helix_path_feed(start, end, center, plane, clockwise, f)
     turns = -1 if clockwise else 1
     ctx.out.append(Arc(ctx.span, it.frame, start, end, center, turns, plane, f, block_motion(it, ctx)))
     it.pos = end
+
+
+def _helix_path_feed(start: Vec6, end: Vec6, center: Vec6, plane: Plane, clockwise: bool, feed: float) -> float:
+    """Path feed that moves the in-plane projection of a helix at ``feed`` (Fanuc convention)."""
+    import math
+
+    i, j, n = plane.first, plane.second, plane.normal
+    r = math.hypot(start[i] - center[i], start[j] - center[j])
+    a0 = math.atan2(start[j] - center[j], start[i] - center[i])
+    a1 = math.atan2(end[j] - center[j], end[i] - center[i])
+    sweep = (a0 - a1) if clockwise else (a1 - a0)
+    sweep %= 2 * math.pi
+    if sweep <= 1e-12:
+        sweep = 2 * math.pi
+    planar = sweep * r
+    if planar <= 0.0:
+        return feed
+    return feed * math.hypot(planar, end[n] - start[n]) / planar
 
 
 MOTIONS["rapid"] = _rapid
@@ -248,14 +268,14 @@ MOTIONS["arc_ccw"] = lambda it, ctx, end: _arc(it, ctx, end, False)
 # ---- G codes ------------------------------------------------------------------------
 @handler("rapid", "linear", "arc_cw", "arc_ccw")
 def _set_motion(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
-    it.modal = replace(it.modal, motion=c.op, cycle="")
+    it.modal = it.modal.with_(motion=c.op, cycle="")
 
 
 @handler("feed_per_min", "feed_per_rev")
 def _feed_mode(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     per_rev = c.op == "feed_per_rev"
     if per_rev != it.modal.per_rev:
-        it.modal = replace(it.modal, per_rev=per_rev)
+        it.modal = it.modal.with_(per_rev=per_rev)
         ctx.out.append(SetMode(ctx.span, it.frame, "feed_mode", "per_rev" if per_rev else "per_min"))
 
 
@@ -336,7 +356,7 @@ def _work(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
 def _path_mode(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     mode = PathMode.EXACT_STOP if c.op == "exact_stop_mode" else PathMode.CONTINUOUS
     if mode is not it.modal.path.mode:
-        it.modal = replace(it.modal, path=it.intern_motion(replace(it.modal.path, mode=mode)))
+        it.modal = it.modal.with_(path=it.intern_motion(replace(it.modal.path, mode=mode)))
         ctx.out.append(SetMode(ctx.span, it.frame, "path_mode", mode))
 
 
@@ -347,24 +367,24 @@ def _exact_once(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
 
 @handler("absolute", "incremental")
 def _distance(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
-    it.modal = replace(it.modal, incremental=c.op == "incremental")
+    it.modal = it.modal.with_(incremental=c.op == "incremental")
 
 
 @handler("return_initial", "return_r")
 def _return_level(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
-    it.modal = replace(it.modal, cycle_return_initial=c.op == "return_initial")
+    it.modal = it.modal.with_(cycle_return_initial=c.op == "return_initial")
 
 
 @handler("css_on", "css_off")
 def _css(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
-    it.modal = replace(it.modal, css=c.op == "css_on")
+    it.modal = it.modal.with_(css=c.op == "css_on")
 
 
 @handler("polar_off", "scale_off", "mirror_off", "rotate_off", "modal_call_off", "cycle_off")
 def _off_when_off(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     """Cancel codes are no-ops while the feature they cancel is not in force."""
     if c.op == "cycle_off":
-        it.modal = replace(it.modal, cycle="")
+        it.modal = it.modal.with_(cycle="")
     if c.op == "mirror_off":
         ctx.axis_used = True
 
@@ -383,7 +403,7 @@ def _g92(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     ctx.axis_used = True
     sw = ctx.words.get("S")
     if sw is not None:
-        it.modal = replace(it.modal, spindle_clamp_rpm=sw.value)
+        it.modal = it.modal.with_(spindle_clamp_rpm=sw.value)
     shift = list(it.frame.g92_offset_mm)
     changed = False
     for i, letter in enumerate(AXES):
@@ -501,5 +521,5 @@ def _coolant(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
 
 @handler("tool_change")
 def _tool_change(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
-    it.modal = replace(it.modal, tool_loaded=it.modal.tool_selected)
+    it.modal = it.modal.with_(tool_loaded=it.modal.tool_selected)
     ctx.out.append(ToolChange(ctx.span, it.frame, it.modal.tool_selected))

@@ -233,28 +233,30 @@ class Parser:
     def blocks(self, src: SourceFile) -> Iterator[sx.Block]:
         """Yield the blocks of ``src`` in order."""
         text = src.text
-        sid = src.source_id
-        fullmatch = self._plain.fullmatch
+        n = len(text)
         pos = 0
         line_no = 0
-        n = len(text)
-        while pos < n or (pos == n and line_no == 0 and n > 0):
+        while pos < n:
             nl = text.find("\n", pos)
             end = n if nl < 0 else nl
             line_no += 1
-            line = text[pos:end]
-            if len(line) > MAX_LINE_CHARS:
-                self.sink.emit(dg.LINE_TOO_LONG, Span(sid, pos, pos + 1),
-                               f"line is {len(line)} characters long (limit {MAX_LINE_CHARS}); skipped")
-            elif line and not line.isspace():
-                m = fullmatch(line)
-                if m is not None:
-                    yield self._plain_block(line, pos, line_no, m.start("c"), m.group("c"))
-                else:
-                    yield from self._lark_blocks(src, line, pos, line_no)
-            if nl < 0:
-                break
-            pos = nl + 1
+            yield from self.blocks_of_line(src, pos, end, line_no)
+            pos = end + 1
+
+    def blocks_of_line(self, src: SourceFile, pos: int, end: int, line_no: int) -> Iterator[sx.Block]:
+        """The blocks of the physical line ``src.text[pos:end]`` (line number ``line_no``)."""
+        if end - pos > MAX_LINE_CHARS:
+            self.sink.emit(dg.LINE_TOO_LONG, Span(src.source_id, pos, pos + 1),
+                           f"line is {end - pos} characters long (limit {MAX_LINE_CHARS}); skipped")
+            return
+        line = src.text[pos:end]
+        if not line or line.isspace():
+            return
+        m = self._plain.fullmatch(line)
+        if m is not None:
+            yield self._plain_block(line, pos, line_no, m.start("c"), m.group("c"))
+        else:
+            yield from self._lark_blocks(src, line, pos, line_no)
 
     # ---- fast path
     def _plain_block(self, line: str, base: int, line_no: int, cpos: int, comment: str) -> sx.Block:
@@ -318,8 +320,6 @@ class Parser:
         lead = len(rest) - len(rest.lstrip())
         start = base + cut + 1 + lead
         comment = sx.CommentItem(rest.strip(), start, start + len(rest.strip()))
-        self.sink.emit(dg.SYNTAX, Span(-2, 0, 0), "")  # placeholder replaced below
-        self.sink.items.pop()
         return parts, comment
 
     def _syntax_error(self, src: SourceFile, line: str, base: int, exc: UnexpectedInput) -> None:
