@@ -1,0 +1,290 @@
+"""Exact step times: where the polynomial phases cross the step boundaries.
+
+Consumes a :class:`~cncc.ir.trajectory.Trajectory` and an :class:`AxisPulseSpec`;
+produces, per time window, the (float-second) time, direction and phase of every
+step of one axis (:class:`RawSteps`).  No sampling: each step time is the root of
+``p(tau) = boundary`` inside a monotone piece of a phase.
+
+1. :func:`segment` cuts the phases into segments small enough that a window of
+   them holds about ``budget`` steps (a 10^8-step cruise is cut into many), and
+   evaluates every axis at the segment boundaries once, so that neighbouring
+   segments share their end values exactly (the step count telescopes).
+2. :func:`exact_axis_steps` splits each segment of one axis at its velocity zeros
+   into monotone pieces, counts the boundaries each piece crosses from the step
+   counts at its ends, and solves for all crossing times at once: closed form for
+   constant-acceleration pieces, safeguarded Newton (bracketed, vectorised) where
+   the jerk is non-zero.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import numpy.typing as npt
+
+from cncc.backends.pulses.spec import AxisPulseSpec
+from cncc.ir.trajectory import Trajectory
+
+F64 = npt.NDArray[np.float64]
+I64 = npt.NDArray[np.int64]
+I8 = npt.NDArray[np.int8]
+I32 = npt.NDArray[np.int32]
+
+NEWTON_TOL_S = 1e-12
+NEWTON_MAX_ITER = 80
+NEWTON_PLAIN_ITER = 2
+
+
+@dataclass(frozen=True, slots=True)
+class RawSteps:
+    """Steps of one axis in one window, before time warping and ns rounding.
+
+    ``t_s``, ``direction``, ``phase``: shape ``(c,)``, sorted by time.
+    ``run_t_s``, ``run_dir``, ``run_phase``: shape ``(r,)``, the start of each stretch
+    of motion that makes steps (a monotone piece, or an interpolation period), used to
+    find reversals.
+    """
+
+    t_s: F64
+    direction: I8
+    phase: I32
+    run_t_s: F64
+    run_dir: I8
+    run_phase: I32
+
+    @staticmethod
+    def empty() -> RawSteps:
+        z = np.zeros(0)
+        return RawSteps(z, np.zeros(0, np.int8), np.zeros(0, np.int32), z.copy(),
+                        np.zeros(0, np.int8), np.zeros(0, np.int32))
+
+
+@dataclass(frozen=True, slots=True)
+class Segments:
+    """Phases cut into segments; arrays ``(S,)`` except ``value_mm`` ``(S + 1, m)``."""
+
+    phase: I64
+    ta_s: F64  # segment start, local time within its phase
+    tb_s: F64
+    est_steps: F64  # estimated steps of all axes
+    value_mm: F64  # every axis' position at each segment boundary
+
+
+def poly(p0: F64, v0: F64, a0: F64, j: F64, tau: F64) -> F64:
+    return p0 + tau * (v0 + tau * (a0 / 2 + tau * j / 6))
+
+
+def velocity_roots(v0: F64, a0: F64, j: F64, ta: F64, tb: F64) -> tuple[F64, F64]:
+    """Zeros of ``v0 + a0 tau + j tau^2/2`` strictly inside ``(ta, tb)``, NaN elsewhere; lo <= hi."""
+    with np.errstate(divide="ignore", invalid="ignore"):
+        big_a = j / 2
+        disc = a0 * a0 - 4 * big_a * v0
+        sq = np.sqrt(np.where(disc >= 0, disc, np.nan))
+        q = -0.5 * (a0 + np.where(a0 >= 0, sq, -sq))
+        r1 = np.where(j != 0, q / big_a, np.where(a0 != 0, -v0 / a0, np.nan))
+        r2 = np.where(j != 0, v0 / q, np.nan)
+    lo = np.fmin(r1, r2)
+    hi = np.fmax(r1, r2)
+    hi = np.where(hi == lo, np.nan, hi)
+    lo = np.where((lo > ta) & (lo < tb), lo, np.nan)
+    hi = np.where((hi > ta) & (hi < tb), hi, np.nan)
+    return lo, hi
+
+
+def speed_max(v0: F64, a0: F64, j: F64, t: F64) -> F64:
+    """Largest ``|v|`` over ``[0, t]`` (elementwise)."""
+    v_end = v0 + t * (a0 + t * j / 2)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ts = np.where(j != 0, -a0 / j, np.nan)
+    inside = (ts > 0) & (ts < t)
+    ts = np.where(inside, ts, 0.0)
+    v_mid = np.where(inside, v0 + ts * (a0 + ts * j / 2), 0.0)
+    return np.maximum(np.maximum(np.abs(v0), np.abs(v_end)), np.abs(v_mid))
+
+
+def segment(traj: Trajectory, steps_per_mm: F64, budget: int) -> Segments:
+    """Cut phases so that no segment holds more than about ``budget`` steps."""
+    n = traj.phase_count
+    dur = traj.duration_s
+    vmax = speed_max(traj.v0_mm_s, traj.a0_mm_s2, traj.j_mm_s3, dur[:, None])
+    est = (vmax * dur[:, None] * steps_per_mm[None, :]).sum(axis=1) + 1.0
+    nsub = np.clip(np.ceil(est / budget), 1, 1 << 30).astype(np.int64)
+    phase = np.repeat(np.arange(n, dtype=np.int64), nsub)
+    first = np.cumsum(nsub) - nsub
+    sub = np.arange(phase.shape[0], dtype=np.int64) - first[phase]
+    frac = 1.0 / nsub[phase]
+    ta = dur[phase] * (sub * frac)
+    tb = np.where(sub + 1 == nsub[phase], dur[phase], dur[phase] * ((sub + 1) * frac))
+    k = phase
+    tcol = ta[:, None]
+    values = poly(traj.p0_mm[k], traj.v0_mm_s[k], traj.a0_mm_s2[k], traj.j_mm_s3[k], tcol)
+    values = np.where((sub == 0)[:, None], traj.p0_mm[k], values)
+    if n:
+        end, _, _ = traj.end_state(n - 1)
+        values = np.vstack([values, end[None, :]])
+    else:
+        values = np.zeros((1, len(traj.axes)))
+    return Segments(phase, ta, tb, (est / nsub)[phase], values)
+
+
+def windows(seg: Segments, budget: int) -> list[tuple[int, int]]:
+    """Consecutive segment ranges ``[lo, hi)`` holding about ``budget`` steps each."""
+    s = seg.phase.shape[0]
+    if s == 0:
+        return []
+    before = np.cumsum(seg.est_steps) - seg.est_steps
+    wid = np.floor(before / budget).astype(np.int64)
+    cuts = np.flatnonzero(np.diff(wid)) + 1
+    edges = [0, *cuts.tolist(), s]
+    return list(zip(edges[:-1], edges[1:], strict=True))
+
+
+def exact_axis_steps(traj: Trajectory, seg: Segments, lo: int, hi: int, i: int, spec: AxisPulseSpec) -> RawSteps:
+    """All steps of axis ``i`` over segments ``[lo, hi)``."""
+    ph = seg.phase[lo:hi]
+    p0, v0 = traj.p0_mm[ph, i], traj.v0_mm_s[ph, i]
+    a0, jk = traj.a0_mm_s2[ph, i], traj.j_mm_s3[ph, i]
+    ta, tb = seg.ta_s[lo:hi], seg.tb_s[lo:hi]
+    r1, r2 = velocity_roots(v0, a0, jk, ta, tb)
+    valid = np.stack([np.ones_like(ta, dtype=bool), np.isfinite(r1), np.isfinite(r2)], axis=1)
+    pstart = np.stack([ta, r1, r2], axis=1)[valid]
+    c = np.nonzero(valid)[0]
+    is_first = np.ones(c.shape[0], dtype=bool)
+    is_first[1:] = c[1:] != c[:-1]
+    is_last = np.ones(c.shape[0], dtype=bool)
+    is_last[:-1] = c[1:] != c[:-1]
+    pend = np.where(is_last, tb[c], np.append(pstart[1:], 0.0))
+    ystart = np.where(is_first, seg.value_mm[lo:hi, i][c], poly(p0[c], v0[c], a0[c], jk[c], pstart))
+    y_all = np.append(ystart, seg.value_mm[hi, i])
+    n_all = spec.motor_steps(y_all)
+    dn = np.diff(n_all)
+    mv = np.flatnonzero(dn)
+    if mv.size == 0:
+        return RawSteps.empty()
+    c, tau_a = c[mv], pstart[mv]
+    counts = np.abs(dn[mv])
+    direction = np.sign(dn[mv]).astype(np.int8)
+    na = n_all[mv]
+    pa = ystart[mv]
+    va = v0[c] + tau_a * (a0[c] + tau_a * jk[c] / 2)
+    aa = a0[c] + tau_a * jk[c]
+    jj = jk[c]
+    length = pend[mv] - tau_a
+    t_abs = traj.t0_s[ph[c]] + tau_a
+    phase = ph[c].astype(np.int32)
+    u = _solve(spec, counts, direction, na, pa, va, aa, jj, length)
+    u += np.repeat(t_abs, counts)
+    return RawSteps(u, np.repeat(direction, counts), np.repeat(phase, counts), t_abs, direction, phase)
+
+
+def _solve(spec: AxisPulseSpec, counts: I64, direction: I8, na: I64, pa: F64, va: F64, aa: F64, jj: F64,
+           length: F64) -> F64:
+    """Local time ``u`` (from piece start) of every step of every piece, concatenated.
+
+    ``d`` is the distance from the piece start to the step's boundary; then
+    ``u = 2 d / (v + sign * sqrt(v^2 + 2 a d))`` (exact without jerk, no cancellation
+    because ``v`` has the motion's sign), polished by Newton where there is jerk.
+    """
+    total = int(counts.sum())
+    first = np.cumsum(counts) - counts
+    off = np.arange(1, total + 1, dtype=np.float64)
+    off -= np.repeat(first.astype(np.float64), counts)
+    dirf = direction.astype(np.float64)
+    if spec.pitch is None:
+        mm_per_step = spec.steps_den / spec.steps_num
+        d0 = (na - 0.5 * dirf) * mm_per_step - pa  # boundary of the first step, from the piece start
+        d = np.repeat(dirf * mm_per_step, counts)
+        d *= off
+        d += np.repeat(d0, counts)
+    else:
+        s_new = np.repeat(na, counts) + np.repeat(direction, counts) * off.astype(np.int64)
+        d = spec.boundary_mm(s_new, np.repeat(direction, counts)) - np.repeat(pa, counts)
+    vs = np.repeat(va, counts)
+    acc = np.repeat(aa, counts)
+    root = acc * d
+    root *= 2
+    root += vs * vs
+    np.maximum(root, 0.0, out=root)
+    np.sqrt(root, out=root)
+    root *= np.repeat(dirf, counts)
+    root += vs
+    with np.errstate(divide="ignore", invalid="ignore"):
+        u = np.divide(d, root, out=root)
+    u *= 2
+    lim = np.repeat(length, counts)
+    jerky = jj != 0
+    if jerky.any():
+        if jerky.all():
+            u = _polish(u, d, vs, acc, np.repeat(jj, counts), np.repeat(dirf, counts), lim)
+        else:
+            sel = np.flatnonzero(np.repeat(jerky, counts))
+            u[sel] = _polish(u[sel], d[sel], vs[sel], acc[sel], np.repeat(jj, counts)[sel],
+                             np.repeat(dirf, counts)[sel], lim[sel])
+    u = np.where(np.isfinite(u), u, lim)
+    np.clip(u, 0.0, lim, out=u)
+    return u
+
+
+def _polish(u: F64, d: F64, v: F64, a: F64, j: F64, dirs: F64, lim: F64) -> F64:
+    """Plain Newton from the no-jerk guess; the few that do not settle go to :func:`_newton`."""
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        bad0 = ~(np.isfinite(u) & (u >= 0) & (u <= lim))
+        if bad0.any():  # e.g. starting from rest: use the pure-jerk root
+            guess = np.cbrt(6 * d / j)
+            u = np.where(bad0, np.where((guess >= 0) & (guess <= lim), guess, 0.5 * lim), u)
+        j6, j2, a2 = j / 6, j / 2, a / 2
+        step = u
+        for _ in range(NEWTON_PLAIN_ITER):
+            f = j6 * u
+            f += a2
+            f *= u
+            f += v
+            f *= u
+            f -= d
+            fp = j2 * u
+            fp += a
+            fp *= u
+            fp += v
+            step = np.divide(f, fp, out=f)
+            u = u - step
+        # error after a Newton step ~ |f''| step^2 / (2 |f'|)
+        est = j * u
+        est += a
+        est *= step
+        est *= step
+        est /= fp
+        ok = (np.abs(est) <= 2 * NEWTON_TOL_S) & (u >= -NEWTON_TOL_S) & (u <= lim + NEWTON_TOL_S)
+    if not ok.all():
+        sel = np.flatnonzero(~ok)
+        u[sel] = _newton(u[sel], d[sel], v[sel], a[sel], j[sel], dirs[sel], lim[sel])
+    return u
+
+
+def _newton(u: F64, d: F64, v: F64, a: F64, j: F64, dirs: F64, lim: F64) -> F64:
+    """Roots of ``v u + a u^2/2 + j u^3/6 = d`` in ``[0, lim]``; the cubic is monotone there."""
+    out = np.empty_like(u)
+    lo = np.zeros_like(u)
+    hi = lim.copy()
+    u = np.where(np.isfinite(u) & (u >= 0) & (u <= lim), u, 0.5 * lim)
+    idx = np.arange(u.shape[0])
+    with np.errstate(divide="ignore", invalid="ignore"):
+        for _ in range(NEWTON_MAX_ITER):
+            f = u * (v + u * (a / 2 + u * j / 6)) - d
+            g = f * dirs
+            lo = np.where(g < 0, u, lo)
+            hi = np.where(g > 0, u, hi)
+            un = u - f / (v + u * (a + u * j / 2))
+            bad = ~((un > lo) & (un < hi))
+            un = np.where(bad, 0.5 * (lo + hi), un)
+            done = (np.abs(un - u) <= NEWTON_TOL_S) | (g == 0)
+            if done.any():
+                out[idx[done]] = un[done]
+                keep = ~done
+                idx, u, d, v, a, j, dirs, lo, hi = (x[keep] for x in (idx, un, d, v, a, j, dirs, lo, hi))
+            else:
+                u = un
+            if idx.size == 0:
+                return out
+    out[idx] = u
+    return out
