@@ -99,7 +99,7 @@ def lower_straight(src: SourceFile, dialect: Dialect, sink: DiagnosticSink, opts
                         if fs is not None:
                             f = float(fs)
                             it.modal = modal = modal.with_(feed=f)
-                            yield FeedRate(new_span(sid, m.start(5) - 1, m.end(5)), frame, f * k_pt, False)
+                            yield FeedRate(new_span(sid, m.start(7) - 1, m.end(7)), frame, f * k_pt, False)
                         if motion == "rapid":
                             yield new_rapid(new_span(sid, pos, end), frame, p, new, modal.path)
                         elif arc:

@@ -324,21 +324,26 @@ class Parser:
 
     def _syntax_error(self, src: SourceFile, line: str, base: int, exc: UnexpectedInput) -> None:
         col = getattr(exc, "pos_in_stream", None)
-        if col is None or col < 0:
+        if col is None or col < 0 or isinstance(exc, UnexpectedEOF):
             col = len(line)
-        if isinstance(exc, UnexpectedCharacters):
-            ch = line[col] if col < len(line) else ""
-            code = dg.BAD_CHARACTER if not ch.isprintable() or ord(ch) > 126 else dg.SYNTAX
-            what = f"unexpected character {ch!r}"
-        elif isinstance(exc, UnexpectedEOF):
-            what = "unexpected end of block"
-            code = dg.SYNTAX
+        ch = line[col] if col < len(line) else ""
+        letter = _bare_letter(line, col)
+        if not letter and ch.isalpha():
+            rest = line[col + 1:].lstrip(" \t")
+            if not rest or not (rest[0].isdigit() or rest[0] in ".#[+-"):
+                letter, ch = ch, rest[:1]
+                col += 1
+        if letter and not (ch.isdigit() or (ch != "" and ch in ".#[")):
+            code, what = dg.MISSING_VALUE, f"address {letter.upper()} has no value"
+            col = _skip_back(line, col)
+        elif isinstance(exc, UnexpectedCharacters) and ch and (not ch.isprintable() or ord(ch) > 126):
+            code, what = dg.BAD_CHARACTER, f"character {ch!r} is not part of any G-code dialect"
+        elif ch:
+            code, what = dg.SYNTAX, f"unexpected {ch!r}"
         else:
-            tok = getattr(exc, "token", None)
-            what = f"unexpected {str(tok)!r}" if tok is not None and str(tok) else "unexpected end of block"
-            code = dg.MISSING_VALUE if _is_bare_letter(line, col) else dg.SYNTAX
-        self.sink.emit(code, Span(src.source_id, base + col, base + min(col + 1, max(len(line), col + 1))),
-                       f"{what}; block skipped")
+            code, what = dg.SYNTAX, "unexpected end of block"
+        span = Span(src.source_id, base + col, base + min(col + 1, max(len(line), col + 1)))
+        self.sink.emit(code, span, f"{what}; block skipped")
 
     def _assemble(
         self, items: tuple[Any, ...], base: int, line: str, line_no: int, trailing: sx.CommentItem | None
@@ -380,8 +385,17 @@ def _block_end_before(line: str, pos: int) -> int:
     return last
 
 
-def _is_bare_letter(line: str, col: int) -> bool:
+def _skip_back(line: str, col: int) -> int:
+    """Column of the last non-blank character before ``col``."""
     j = col - 1
     while j >= 0 and line[j] in " \t":
         j -= 1
-    return j >= 0 and line[j].isalpha()
+    return max(j, 0)
+
+
+def _bare_letter(line: str, col: int) -> str:
+    """The address letter just before ``col`` if it has no value (else "")."""
+    j = _skip_back(line, col)
+    if j < len(line) and line[j:j + 1].isalpha() and (j == 0 or not line[j - 1].isalpha()):
+        return line[j]
+    return ""

@@ -92,7 +92,8 @@ class MachineModel:
     max_speed_step_mm_min: float = 0.0  # path speed step done instantly (SZGH Speed P12)
     mst_stops_motion: bool = False  # M/S/T blocks (coolant, S, T, aux M) stop the path (SZGH)
     arc_tolerance_mm: float = 0.001  # chord sagitta allowed when arcs become chords
-    reference_positions_mm: tuple[tuple[float, ...], ...] = ((0.0, 0.0, 0.0, 0.0, 0.0, 0.0),)
+    # G28 reference and the G30 P2..P4 positions, machine coordinates (mm, deg)
+    reference_positions_mm: tuple[tuple[float, ...], ...] = ((0.0, 0.0, 0.0, 0.0, 0.0, 0.0),) * 4
     notes: str = ""
 
     def axis(self, name: str) -> Axis | None:
