@@ -56,3 +56,16 @@ def codes(r: Result) -> list[str]:
 
 
 __all__ = ["calls", "canon", "codes", "compile_commands", "compile_text", "moves"]
+
+
+def nominal(text: str, dialect: str = "syntec", **opts: Any) -> Any:
+    """Nominal (-O0) timing of the compiled commands (``.total_s``, ``.by_category_s``)."""
+    from cncc.backends.nominal import nominal_timing
+    from cncc.diagnostics import DiagnosticSink
+    from cncc.driver import resolve_machine
+
+    cmds, r = compile_commands(text, dialect=dialect, **opts)
+    assert r.ok, [(d.code, d.message) for d in r.sink]
+    machine = resolve_machine(opts.get("machine", "generic-mill"), DiagnosticSink())
+    assert machine is not None
+    return nominal_timing(cmds, machine)

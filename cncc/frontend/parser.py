@@ -301,7 +301,9 @@ class Parser:
                 self.sink.emit(dg.BAD_NUMBER_LENIENT, Span(src.source_id, start, end),
                                f"malformed number '{text}' read as '{text[:-1]}'")
         for k, items in enumerate(parts):
-            yield self._assemble(items, base, stripped, line_no, trailing if k == len(parts) - 1 else None)
+            last = trailing if k == len(parts) - 1 else None
+            if items or last is not None:
+                yield self._assemble(items, base, stripped, line_no, last)
 
     def _recover_after_block_end(
         self, parser: Lark, builder: _Builder, line: str, base: int, exc: UnexpectedInput

@@ -4,18 +4,15 @@ spec's derived coordinates; timing values are recomputed here from geometry."""
 
 from __future__ import annotations
 
-import json
 import math
 
 import pytest
 
-from tests.helpers import calls, canon, codes, compile_text, moves
+from tests.helpers import calls, canon, codes, moves, nominal
 
 
 def nominal_total(text: str, **opts: object) -> float:
-    r = compile_text(text, emit="timing", opt_level=0, report_format="json", **opts)
-    assert r.ok, [d.message for d in r.sink]
-    return float(json.loads(r.output)["total_s"])
+    return float(nominal(text, **opts).total_s)
 
 
 START_20_20 = "G90 G00 X20.0 Y20.0 ;\n"
@@ -98,9 +95,7 @@ def test_e000_05_feed_length_time() -> None:
     assert xy == pytest.approx(188.332, abs=5e-4)
     feed_time = (xy + 20.0) / (1000.0 / 60.0)
     assert feed_time == pytest.approx(12.500, abs=5e-4)
-    r = compile_text(E000_05, emit="timing", opt_level=0, report_format="json")
-    doc = json.loads(r.output)
-    assert doc["by_category_s"]["feed"] == pytest.approx(feed_time, rel=1e-12)
+    assert nominal(E000_05).by_category_s["feed"] == pytest.approx(feed_time, rel=1e-12)
 
 
 E000_07 = """G90 G00 X5500 Y4000;//positioning to start point of arc
