@@ -155,7 +155,7 @@ class _Post:
         self.layout = layout
         self.rep = rep
         self.state = [_AxisState() for _ in layout.specs]
-        self.burst_s = [backlash_offsets_s(s) for s in layout.specs]
+        self.burst = [backlash_offsets_s(s) for s in layout.specs]
         self.offset_s = 0.0
         self.index = 0
         self.t_start_ns = 0
@@ -212,13 +212,14 @@ class _Post:
         t_ns = np.rint(warp(raw.t_s) * 1e9).astype(np.int64)
         direction, phase = raw.direction, raw.phase
         backlash = np.zeros(t_ns.shape, dtype=np.bool_)
-        burst = self.burst_s[i]
+        burst, burst_len_s = self.burst[i]
         if (burst.size and flip[0].size) or st.pend_t.size:
             parts_t, parts_d, parts_p, parts_b = [t_ns, st.pend_t], [direction, st.pend_dir], [phase, st.pend_phase], \
                 [backlash, np.ones(st.pend_t.shape, np.bool_)]
+            starts = np.zeros(0)
             if burst.size and flip[0].size:
-                start = warp(flip[0], "left")
-                bt = np.rint((start[:, None] + burst[None, :]) * 1e9).astype(np.int64).ravel()
+                starts = warp(flip[0], "left")
+                bt = np.rint((starts[:, None] + burst[None, :]) * 1e9).astype(np.int64).ravel()
                 parts_t.append(bt)
                 parts_d.append(np.repeat(flip[1], burst.size))
                 parts_p.append(np.repeat(flip[2], burst.size))
@@ -227,6 +228,8 @@ class _Post:
             phase, backlash = np.concatenate(parts_p), np.concatenate(parts_b)
             order = np.argsort(t_ns, kind="stable")
             t_ns, direction, phase, backlash = t_ns[order], direction[order], phase[order], backlash[order]
+            for t0 in starts.tolist():
+                superpose(t_ns, direction, backlash, int(round(t0 * 1e9)), int(round((t0 + burst_len_s) * 1e9)))
             carry = backlash & (t_ns >= end_ns) if not final else np.zeros(t_ns.shape, np.bool_)
             st.pend_t, st.pend_dir, st.pend_phase = t_ns[carry], direction[carry], phase[carry]
             if carry.any():
@@ -266,3 +269,37 @@ class _Post:
             u[0] = max(int(u[0]), st.last_t_ns + 1)
         t_ns[:] = np.maximum.accumulate(u) + base
         return idx
+
+
+def superpose(t_ns: I64, direction: np.ndarray, backlash: np.ndarray, t0_ns: int, t1_ns: int) -> None:  # type: ignore[type-arg]
+    """Re-time, in place, the backlash burst ``[t0_ns, t1_ns]`` and the commanded steps inside it.
+
+    The drive sees the sum of two motions, the commanded one and the compensation, so
+    its steps are where the *sum* of the two positions crosses the step boundaries,
+    not the union of two step trains (which could put two pulses a nanosecond apart).
+    Each train's position is taken as linear between its own crossings (step ``k`` at
+    ``k - 1/2``); the combined steps are the crossings of the sum.  Labels (phase,
+    backlash flag) stay with the steps in their merged order.
+    """
+    lo = int(np.searchsorted(t_ns, t0_ns, side="left"))
+    hi = int(np.searchsorted(t_ns, t1_ns, side="right"))
+    if hi - lo < 2:
+        return
+    seg_b = backlash[lo:hi]
+    if seg_b.all() or not seg_b.any() or np.ptp(direction[lo:hi]) != 0:
+        return  # nothing to combine, or a further reversal inside: keep the plain merge
+    t = t_ns[lo:hi].astype(np.float64)
+    knots_c = [float(t0_ns), *t[~seg_b].tolist()]
+    n_c = int((~seg_b).sum())
+    nxt = hi < t_ns.shape[0] and not backlash[hi] and direction[hi] == direction[lo]
+    if nxt:
+        knots_c.append(float(t_ns[hi]))
+    levels_c = np.concatenate([[0.0], np.arange(n_c) + 0.5, [n_c + 0.5] if nxt else []])
+    n_b = int(seg_b.sum())
+    knots_b = np.array([float(t0_ns), *t[seg_b].tolist(), float(max(t1_ns, int(t[-1])))])
+    levels_b = np.concatenate([[0.0], np.arange(n_b) + 0.5, [float(n_b)]])
+    grid = np.unique(np.concatenate([knots_c, knots_b]))
+    total = np.interp(grid, np.array(knots_c), levels_c) + np.interp(grid, knots_b, levels_b)
+    total = np.maximum.accumulate(total)
+    new = np.interp(np.arange(n_c + n_b) + 0.5, total, grid)
+    t_ns[lo:hi] = np.rint(new).astype(np.int64)

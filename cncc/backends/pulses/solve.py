@@ -77,7 +77,7 @@ def poly(p0: F64, v0: F64, a0: F64, j: F64, tau: F64) -> F64:
 
 def velocity_roots(v0: F64, a0: F64, j: F64, ta: F64, tb: F64) -> tuple[F64, F64]:
     """Zeros of ``v0 + a0 tau + j tau^2/2`` strictly inside ``(ta, tb)``, NaN elsewhere; lo <= hi."""
-    with np.errstate(divide="ignore", invalid="ignore"):
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         big_a = j / 2
         disc = a0 * a0 - 4 * big_a * v0
         sq = np.sqrt(np.where(disc >= 0, disc, np.nan))
@@ -95,7 +95,7 @@ def velocity_roots(v0: F64, a0: F64, j: F64, ta: F64, tb: F64) -> tuple[F64, F64
 def speed_max(v0: F64, a0: F64, j: F64, t: F64) -> F64:
     """Largest ``|v|`` over ``[0, t]`` (elementwise)."""
     v_end = v0 + t * (a0 + t * j / 2)
-    with np.errstate(divide="ignore", invalid="ignore"):
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         ts = np.where(j != 0, -a0 / j, np.nan)
     inside = (ts > 0) & (ts < t)
     ts = np.where(inside, ts, 0.0)

@@ -178,8 +178,8 @@ def axis_spec(axis: Axis) -> tuple[AxisPulseSpec, bool]:
     return spec, ok
 
 
-def backlash_offsets_s(spec: AxisPulseSpec) -> FloatArray:
-    """Times (from the reversal) of the backlash compensation pulses of ``spec``.
+def backlash_offsets_s(spec: AxisPulseSpec) -> tuple[FloatArray, float]:
+    """Times (from the reversal) of the backlash compensation pulses of ``spec``, and the move's duration.
 
     Pulse ``k`` (0-based) happens when the compensation move reaches ``(k + 1/2)``
     steps.  Mode A moves at a constant rate; mode B ramps from the start rate to the
@@ -187,10 +187,10 @@ def backlash_offsets_s(spec: AxisPulseSpec) -> FloatArray:
     """
     b = spec.backlash_steps
     if b <= 0 or spec.backlash_mode is BacklashMode.NONE:
-        return np.zeros(0)
+        return np.zeros(0), 0.0
     x = np.arange(b, dtype=np.float64) + 0.5
     if spec.backlash_mode is BacklashMode.A:
-        return x / spec.backlash_a_rate_hz
+        return x / spec.backlash_a_rate_hz, b / spec.backlash_a_rate_hz
     vs, vm, a = spec.backlash_start_rate_hz, spec.backlash_rate_hz, spec.backlash_accel_hz_s
     half = b / 2.0
     x_acc = min((vm * vm - vs * vs) / (2 * a), half)
@@ -203,4 +203,4 @@ def backlash_offsets_s(spec: AxisPulseSpec) -> FloatArray:
 
     t = np.where(x <= x_acc, accel_time(np.minimum(x, x_acc)), t_acc + (x - x_acc) / v_peak)
     tail = x > b - x_acc
-    return np.where(tail, t_total - accel_time(np.maximum(b - x, 0.0)), t)
+    return np.where(tail, t_total - accel_time(np.maximum(b - x, 0.0)), t), t_total
