@@ -79,6 +79,25 @@ G53_INCREMENTAL = _define("W0216", W, "G53 in incremental mode is ignored")
 AFTER_END = _define("N0217", N, "blocks after the program end are not executed")
 DECIMAL_P_DWELL = _define("W0218", W, "G04 P takes integer milliseconds; the fraction is dropped")
 
+# --- E04xx: canned cycles and hole patterns ----------------------------------------
+CYCLE_NO_R = _define("E0401", E, "a drilling block without an R level")
+CYCLE_NO_BOTTOM = _define("E0402", E, "a drilling block without a hole bottom (Z)")
+CYCLE_R_PAST_BOTTOM = _define("E0403", E, "the R level is not on the entry side of the hole bottom")
+CYCLE_BAD_PECK = _define("E0404", E, "a peck cycle without a positive depth per peck Q")
+CYCLE_NEGATIVE_Q = _define("W0405", W, "a negative Q; its absolute value is used")
+CYCLE_BAD_REPEAT = _define("E0406", E, "a repeat count (K or L) that is not an integer in range")
+CYCLE_PLANE_CHANGE = _define("E0407", E, "the plane changed while a canned cycle is in force")
+PATTERN_NO_CYCLE = _define("E0408", E, "a hole pattern without a canned cycle in force")
+PATTERN_BAD_WORD = _define("E0409", E, "a hole-pattern word is missing or out of range")
+CYCLE_R_ABOVE_INITIAL = _define("W0410", W, "the R level is farther out than the initial level")
+CYCLE_REPEAT_ABSOLUTE = _define("W0411", W, "repeats in absolute mode drill the same hole again")
+CYCLE_NO_PITCH = _define("E0412", E, "a tapping cycle without a pitch or a spindle speed")
+CYCLE_BAD_SHIFT = _define("E0413", E, "a boring shift direction parameter out of range")
+CYCLE_SPINDLE = _define("W0414", W, "a tapping cycle starts with the spindle off or turning the wrong way")
+CYCLE_UNKNOWN = _define("E0415", E, "the dialect names a cycle kind cncc does not know")
+CYCLE_WORDS_NOT_STORED = _define("W0416", W, "cycle data in a block that does not drill is not stored")
+CYCLE_LONG_DWELL = _define("W0417", W, "a cycle dwell longer than a minute (is P in the right unit?)")
+
 # --- E05xx: frames and compensation ------------------------------------------------
 ARC_REPAIRED = _define("W0511", W, "an arc's centre was moved to make its radii agree")
 

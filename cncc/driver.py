@@ -150,11 +150,13 @@ def path_passes(cmds: Iterable[Command], dialect: Dialect, machine: MachineModel
     """The passes that change the programmed path (before lowering to machine coordinates)."""
     from cncc.passes import PassContext, run_pipeline
     from cncc.passes.arc_check import ArcCheck
+    from cncc.passes.expand_cycles import ExpandCycles
 
     ctx = PassContext(sink=sink, dialect=dialect, machine=machine)
     tol_abs = float(dialect.option("arc_radius_tolerance_mm", ArcCheck.abs_tol_mm))
     tol_rel = float(dialect.option("arc_radius_tolerance_rel", ArcCheck.rel_tol))
-    passes = [ArcCheck(abs_tol_mm=max(tol_abs, ArcCheck.abs_tol_mm), rel_tol=tol_rel, repair=opts.repair_arcs)]
+    passes = [ExpandCycles(),
+              ArcCheck(abs_tol_mm=max(tol_abs, ArcCheck.abs_tol_mm), rel_tol=tol_rel, repair=opts.repair_arcs)]
     return run_pipeline(passes, cmds, ctx)
 
 

@@ -523,3 +523,6 @@ def _coolant(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
 def _tool_change(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     it.modal = it.modal.with_(tool_loaded=it.modal.tool_selected)
     ctx.out.append(ToolChange(ctx.span, it.frame, it.modal.tool_selected))
+
+
+from cncc.frontend import cycles as _cycles  # noqa: E402,F401  (canned cycles and hole patterns register here)

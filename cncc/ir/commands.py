@@ -216,6 +216,69 @@ class Wait:
     seconds: float = 0.0
 
 
+class CycleKind(enum.Enum):
+    """Canned cycle kinds; the values are the ``cycle`` names of the dialect tables."""
+
+    DRILL = "drill"  # G81
+    DRILL_DWELL = "drill_dwell"  # G82
+    PECK = "peck"  # G83: full retract to R after each peck
+    PECK_HIGH_SPEED = "peck_high_speed"  # G73: small retract after each peck
+    TAP = "tap"  # G84: right-hand tap
+    TAP_LEFT = "tap_left"  # G74: left-hand tap
+    FINE_BORE = "fine_bore"  # G76: oriented stop and shift before the retract
+    BORE_FEED_OUT = "bore_feed_out"  # G85
+    BORE_STOP_RAPID_OUT = "bore_stop_rapid_out"  # G86
+    BACK_BORE = "back_bore"  # G87: cut upward from R to the bottom
+    BORE_MANUAL = "bore_manual"  # G88: operator retracts by hand
+    BORE_DWELL_FEED_OUT = "bore_dwell_feed_out"  # G89
+
+
+@dataclass(frozen=True, slots=True)
+class Cycle:
+    """One block's canned cycle (all its holes), kept whole until ``expand-cycles``.
+
+    Levels are positions on the drilling axis (``frame.plane.normal``: Z in G17, Y in
+    G18, X in G19) in the frame's program coordinates; ``holes`` are the positions the
+    tool is put at before each hole (their drilling-axis component is unused).  The
+    front end has already resolved G90/G91, K/L repeats, hole patterns, the return
+    level of G98/G99 and the machine parameters (peck clearance, shift direction), so
+    the expansion needs nothing but this record.
+    """
+
+    span: Span
+    frame: Frame
+    kind: CycleKind
+    code: str  # as programmed ("G81"), so translation can keep the cycle
+    start: Vec6  # tool position before the first hole
+    holes: tuple[Vec6, ...]
+    initial_mm: float  # initial level (G98 return)
+    r_mm: float  # R level
+    bottom_mm: float  # Z: the hole bottom (for a back bore, the top of the bore)
+    retract_mm: float  # level every hole ends at (G98: initial, G99: R, G87: initial)
+    feed_mm_min: float
+    return_initial: bool = True  # G98 (True) or G99 (False) as programmed
+    peck_mm: float = 0.0  # Q: depth per peck, 0 without pecks
+    clearance_mm: float = 0.0  # d: G73 retract, G83 clearance, peck-tap back-off
+    peck_tap_to_r: bool = True  # peck tapping returns to R (True) or backs off by d
+    shift_mm: Vec6 = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)  # G76/G87 shift away from the wall
+    dwell_s: float = 0.0
+    spindle: SpindleState = SpindleState.CW  # direction when the cycle starts
+    spindle_rpm: float = 0.0
+    tap_pitch_mm: float = 0.0  # tapping: feed = rpm x pitch, spindle-synchronised
+    repeat: int = 1  # K (SYNTEC) / L (SZGH) as programmed
+    pattern: str = ""  # the hole-pattern code (G134 ...) that produced the holes
+    motion: Motion = DEFAULT_MOTION
+
+    @property
+    def plane(self) -> Plane:
+        return self.frame.plane
+
+    @property
+    def axis(self) -> int:
+        """Index of the drilling axis in the 6-vectors."""
+        return self.frame.plane.normal
+
+
 Command = (
     Rapid
     | Linear
@@ -233,6 +296,7 @@ Command = (
     | SetMode
     | Aux
     | Wait
+    | Cycle
 )
 """The closed union of IR commands.  Later issues add cycles, probes, NURBS."""
 

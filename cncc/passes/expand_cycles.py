@@ -1,0 +1,253 @@
+"""``expand-cycles``: canned cycles to rapids, feeds, dwells and spindle events.
+
+Consumes :class:`cncc.ir.Cycle` commands (everything else passes through) and yields,
+per hole, the moves the controller makes, in the cycle's own frame:
+
+* positioning: a rapid in the plane at the current height, then a rapid to R;
+* the cycle's in-feed, bottom action and retract (table in ``docs/cycles.md``);
+* every move has the exact-stop path mode and ``origin`` set to the cycle code.
+
+Tapping moves are bracketed by ``SetMode("spindle_sync", pitch_mm)`` and
+``SetMode("spindle_sync", 0.0)``: in between, the feed axis follows the spindle
+(feed = rpm x pitch, overrides locked at 100 %).  Spindle reversals, stops, orients
+and restarts are :class:`Spindle` commands; the G88 manual retract is a :class:`Wait`.
+Zero-length moves are left out (a G99 hole starts at R already).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Iterable, Iterator
+from dataclasses import dataclass, replace
+from typing import ClassVar
+
+from cncc.ir import (
+    Command,
+    Cycle,
+    CycleKind,
+    Dwell,
+    Linear,
+    Motion,
+    PathMode,
+    Rapid,
+    SetMode,
+    Spindle,
+    SpindleState,
+    Vec6,
+    Wait,
+)
+from cncc.passes import Pass, PassContext, register
+
+MANUAL_RETRACT = "operator: retract the tool by hand, then cycle start (G88)"
+
+
+@register
+@dataclass(frozen=True, kw_only=True)
+class ExpandCycles(Pass):
+    """Lower every canned cycle to primitive moves."""
+
+    name: ClassVar[str] = "expand-cycles"
+
+    def run(self, cmds: Iterable[Command], ctx: PassContext) -> Iterator[Command]:
+        for c in cmds:
+            if isinstance(c, Cycle):
+                yield from expand(c)
+            else:
+                yield c
+
+
+def expand(c: Cycle) -> list[Command]:
+    """The primitive commands of one cycle command."""
+    path = _Path(c)
+    sequence = SEQUENCES[c.kind]
+    for hole in c.holes:
+        path.hole = hole
+        path.rapid(path.at(path.pos[c.axis]))
+        sequence(path)
+    return path.out
+
+
+def peck_depths(r_mm: float, bottom_mm: float, peck_mm: float) -> list[float]:
+    """Bottoms of the successive pecks from R; the last one is the hole bottom."""
+    depth = abs(bottom_mm - r_mm)
+    down = -1.0 if bottom_mm < r_mm else 1.0
+    if peck_mm <= 0:
+        return [bottom_mm]
+    n = max(1, math.ceil(depth / peck_mm - 1e-9))
+    return [r_mm + down * k * peck_mm for k in range(1, n)] + [bottom_mm]
+
+
+class _Path:
+    """Builds the command list of one cycle, tracking the tool position."""
+
+    def __init__(self, c: Cycle) -> None:
+        self.c = c
+        self.out: list[Command] = []
+        self.pos: Vec6 = c.start
+        self.hole: Vec6 = c.start
+        self.motion: Motion = replace(c.motion, mode=PathMode.EXACT_STOP)
+        running = c.spindle in (SpindleState.CW, SpindleState.CCW)
+        default = SpindleState.CCW if c.kind is CycleKind.TAP_LEFT else SpindleState.CW
+        self.forward = c.spindle if running else default
+        self.down = -1.0 if c.bottom_mm < c.r_mm else 1.0
+
+    def at(self, level: float, shifted: bool = False) -> Vec6:
+        p = list(self.hole)
+        p[self.c.axis] = level
+        if shifted:
+            p = [p[i] + self.c.shift_mm[i] for i in range(6)]
+        return (p[0], p[1], p[2], p[3], p[4], p[5])
+
+    def rapid(self, p: Vec6) -> None:
+        if p != self.pos:
+            self.out.append(Rapid(self.c.span, self.c.frame, self.pos, p, self.motion, self.c.code))
+            self.pos = p
+
+    def feed(self, p: Vec6) -> None:
+        if p != self.pos:
+            c = self.c
+            self.out.append(Linear(c.span, c.frame, self.pos, p, c.feed_mm_min, self.motion, c.code))
+            self.pos = p
+
+    def dwell(self) -> None:
+        if self.c.dwell_s > 0:
+            self.out.append(Dwell(self.c.span, self.c.frame, self.c.dwell_s))
+
+    def spindle(self, state: SpindleState) -> None:
+        self.out.append(Spindle(self.c.span, self.c.frame, state, self.c.spindle_rpm))
+
+    def reverse(self) -> SpindleState:
+        return SpindleState.CCW if self.forward is SpindleState.CW else SpindleState.CW
+
+    def sync(self, pitch_mm: float) -> None:
+        self.out.append(SetMode(self.c.span, self.c.frame, "spindle_sync", pitch_mm))
+
+    def wait(self, what: str) -> None:
+        self.out.append(Wait(self.c.span, self.c.frame, what))
+
+
+# ---- one hole of each kind (the tool is above the hole at the positioning height) -----------------
+def _drill(p: _Path) -> None:
+    c = p.c
+    p.rapid(p.at(c.r_mm))
+    p.feed(p.at(c.bottom_mm))
+    if c.kind is CycleKind.DRILL_DWELL:
+        p.dwell()
+    p.rapid(p.at(c.retract_mm))
+
+
+def _peck_high_speed(p: _Path) -> None:
+    c = p.c
+    p.rapid(p.at(c.r_mm))
+    depths = peck_depths(c.r_mm, c.bottom_mm, c.peck_mm)
+    for b in depths[:-1]:
+        p.feed(p.at(b))
+        p.rapid(p.at(b - p.down * c.clearance_mm))
+    p.feed(p.at(c.bottom_mm))
+    p.rapid(p.at(c.retract_mm))
+
+
+def _peck(p: _Path) -> None:
+    c = p.c
+    p.rapid(p.at(c.r_mm))
+    depths = peck_depths(c.r_mm, c.bottom_mm, c.peck_mm)
+    for k, b in enumerate(depths):
+        if k:
+            p.rapid(p.at(c.r_mm))
+            back = depths[k - 1] - p.down * c.clearance_mm
+            p.rapid(p.at(back if (back - c.r_mm) * p.down > 0 else c.r_mm))
+        p.feed(p.at(b))
+    p.rapid(p.at(c.retract_mm))
+
+
+def _tap(p: _Path) -> None:
+    c = p.c
+    p.rapid(p.at(c.r_mm))
+    p.sync(c.tap_pitch_mm)
+    depths = peck_depths(c.r_mm, c.bottom_mm, c.peck_mm)
+    for k, b in enumerate(depths):
+        p.feed(p.at(b))
+        p.dwell()
+        p.spindle(p.reverse())
+        last = k == len(depths) - 1
+        p.feed(p.at(c.r_mm if last or c.peck_tap_to_r else b - p.down * c.clearance_mm))
+        p.dwell()
+        p.spindle(p.forward)
+    p.sync(0.0)
+    p.rapid(p.at(c.retract_mm))
+
+
+def _feed_out(p: _Path) -> None:
+    c = p.c
+    p.rapid(p.at(c.r_mm))
+    p.feed(p.at(c.bottom_mm))
+    if c.kind is CycleKind.BORE_DWELL_FEED_OUT:
+        p.dwell()
+    p.feed(p.at(c.r_mm))
+    p.rapid(p.at(c.retract_mm))
+
+
+def _stop_rapid_out(p: _Path) -> None:
+    c = p.c
+    p.rapid(p.at(c.r_mm))
+    p.feed(p.at(c.bottom_mm))
+    p.spindle(SpindleState.OFF)
+    p.rapid(p.at(c.retract_mm))
+    p.spindle(p.forward)
+
+
+def _fine_bore(p: _Path) -> None:
+    c = p.c
+    p.rapid(p.at(c.r_mm))
+    p.feed(p.at(c.bottom_mm))
+    p.dwell()
+    p.spindle(SpindleState.ORIENT)
+    p.rapid(p.at(c.bottom_mm, shifted=True))
+    p.rapid(p.at(c.retract_mm, shifted=True))
+    p.rapid(p.at(c.retract_mm))
+    p.spindle(p.forward)
+
+
+def _back_bore(p: _Path) -> None:
+    c = p.c
+    level = p.pos[c.axis]
+    p.spindle(SpindleState.ORIENT)
+    p.rapid(p.at(level, shifted=True))
+    p.rapid(p.at(c.r_mm, shifted=True))
+    p.rapid(p.at(c.r_mm))
+    p.spindle(p.forward)
+    p.feed(p.at(c.bottom_mm))
+    p.dwell()
+    p.spindle(SpindleState.ORIENT)
+    p.rapid(p.at(c.bottom_mm, shifted=True))
+    p.rapid(p.at(c.retract_mm, shifted=True))
+    p.rapid(p.at(c.retract_mm))
+    p.spindle(p.forward)
+
+
+def _manual(p: _Path) -> None:
+    c = p.c
+    p.rapid(p.at(c.r_mm))
+    p.feed(p.at(c.bottom_mm))
+    p.dwell()
+    p.spindle(SpindleState.OFF)
+    p.wait(MANUAL_RETRACT)
+    p.feed(p.at(c.r_mm))
+    p.rapid(p.at(c.retract_mm))
+    p.spindle(p.forward)
+
+
+SEQUENCES: dict[CycleKind, Callable[[_Path], None]] = {
+    CycleKind.DRILL: _drill,
+    CycleKind.DRILL_DWELL: _drill,
+    CycleKind.PECK_HIGH_SPEED: _peck_high_speed,
+    CycleKind.PECK: _peck,
+    CycleKind.TAP: _tap,
+    CycleKind.TAP_LEFT: _tap,
+    CycleKind.FINE_BORE: _fine_bore,
+    CycleKind.BORE_FEED_OUT: _feed_out,
+    CycleKind.BORE_DWELL_FEED_OUT: _feed_out,
+    CycleKind.BORE_STOP_RAPID_OUT: _stop_rapid_out,
+    CycleKind.BACK_BORE: _back_bore,
+    CycleKind.BORE_MANUAL: _manual,
+}
