@@ -6,6 +6,12 @@ import math
 
 import numpy as np
 import pytest
+
+from cncc.backends.pulses import StepChunk, generate_pulses
+from cncc.backends.pulses.spec import axis_spec
+from cncc.diagnostics import DiagnosticSink
+from cncc.ir.machine import Axis, AxisKind, MachineModel, StepOutput
+from cncc.ir.trajectory import Trajectory
 from tests.backends.pulse_trajectories import (
     NAN,
     build,
@@ -16,12 +22,6 @@ from tests.backends.pulse_trajectories import (
     s_curve,
     trapezoid,
 )
-
-from cncc.backends.pulses import StepChunk, generate_pulses
-from cncc.backends.pulses.spec import axis_spec
-from cncc.diagnostics import DiagnosticSink
-from cncc.ir.machine import Axis, AxisKind, MachineModel, StepOutput
-from cncc.ir.trajectory import Trajectory
 
 
 def machine(*axes: Axis) -> MachineModel:

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import io
+import itertools
 from pathlib import Path
 
 import numpy as np
@@ -141,8 +142,8 @@ def test_queue_reproduces_every_step_within_its_bound(gaps: list[int], flips: li
     for f in flips:
         d[f % t.size:] *= -1
     cuts = np.linspace(0, t.size, pieces + 1).astype(int)
-    chunks = _chunks_from_times([t[a:b] for a, b in zip(cuts[:-1], cuts[1:], strict=True)],
-                                [d[a:b] for a, b in zip(cuts[:-1], cuts[1:], strict=True)])
+    chunks = _chunks_from_times([t[a:b] for a, b in itertools.pairwise(cuts)],
+                                [d[a:b] for a, b in itertools.pairwise(cuts)])
     buf = io.StringIO()
     write_pulses(iter(chunks), "queue", buf, max_error_ns=e)
     r, levels = read_queue(buf.getvalue().splitlines())["X"]

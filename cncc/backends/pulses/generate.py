@@ -229,7 +229,7 @@ class _Post:
             order = np.argsort(t_ns, kind="stable")
             t_ns, direction, phase, backlash = t_ns[order], direction[order], phase[order], backlash[order]
             for t0 in starts.tolist():
-                superpose(t_ns, direction, backlash, int(round(t0 * 1e9)), int(round((t0 + burst_len_s) * 1e9)))
+                superpose(t_ns, direction, backlash, round(t0 * 1e9), round((t0 + burst_len_s) * 1e9))
             carry = backlash & (t_ns >= end_ns) if not final else np.zeros(t_ns.shape, np.bool_)
             st.pend_t, st.pend_dir, st.pend_phase = t_ns[carry], direction[carry], phase[carry]
             if carry.any():

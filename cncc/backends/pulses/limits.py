@@ -65,7 +65,8 @@ class Reporter:
         """One diagnostic per command among ``phases``; ``describe`` is formatted with the worst value."""
         if self.sink is None or phases.size == 0:
             return
-        cmds = self.cmd_index[np.clip(phases, 0, max(self.cmd_index.shape[0] - 1, 0))] if self.cmd_index.size else phases
+        last = max(self.cmd_index.shape[0] - 1, 0)
+        cmds = self.cmd_index[np.clip(phases, 0, last)] if self.cmd_index.size else phases
         for cmd in np.unique(cmds).tolist():
             sel = cmds == cmd
             worst = float(values[sel].min() if worst_is_min else values[sel].max())

@@ -13,6 +13,7 @@ program streams through in bounded memory.
 
 from __future__ import annotations
 
+import itertools
 from collections.abc import Iterable
 from typing import TextIO
 
@@ -145,7 +146,7 @@ class QueueWriter:
             return 0
         cuts = np.flatnonzero(lv[1:] != lv[:-1]) + 1
         bounds = [0, *cuts.tolist(), t.shape[0]]
-        for b0, b1 in zip(bounds[:-1], bounds[1:], strict=True):
+        for b0, b1 in itertools.pairwise(bounds):
             last_run = b1 == t.shape[0]
             cmds, last, used = compress_run(t[b0:b1], self.last[i], self.e, final or not last_run)
             if cmds and int(lv[b0]) != self.level_out[i]:
@@ -154,8 +155,8 @@ class QueueWriter:
             lines.extend(f"queue_step {name} {iv} {c} {a}\n" for iv, c, a in cmds)
             self.last[i] = last
             if b0 + used < b1:
-                return b0 + used
-        return t.shape[0]
+                return int(b0 + used)
+        return int(t.shape[0])
 
 
 def write_queue(chunks: Iterable[StepChunk], out: TextIO, max_error_ns: int = DEFAULT_MAX_ERROR_NS) -> None:

@@ -18,6 +18,7 @@ step of one axis (:class:`RawSteps`).  No sampling: each step time is the root o
 
 from __future__ import annotations
 
+import itertools
 from dataclasses import dataclass
 
 import numpy as np
@@ -137,7 +138,7 @@ def windows(seg: Segments, budget: int) -> list[tuple[int, int]]:
     wid = np.floor(before / budget).astype(np.int64)
     cuts = np.flatnonzero(np.diff(wid)) + 1
     edges = [0, *cuts.tolist(), s]
-    return list(zip(edges[:-1], edges[1:], strict=True))
+    return list(itertools.pairwise(edges))
 
 
 def exact_axis_steps(traj: Trajectory, seg: Segments, lo: int, hi: int, i: int, spec: AxisPulseSpec) -> RawSteps:

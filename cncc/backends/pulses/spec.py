@@ -71,7 +71,8 @@ class PitchMap:
             g0 = self.g_mm[0]
             k = np.floor((u - g0) / ROTARY_PERIOD_DEG)
             u0 = u - k * ROTARY_PERIOD_DEG
-            return self.home_mm + np.interp(u0, self.g_mm, self.x_mm) + k * ROTARY_PERIOD_DEG
+            x: FloatArray = np.interp(u0, self.g_mm, self.x_mm) + k * ROTARY_PERIOD_DEG
+            return x + self.home_mm
         inside = np.interp(u, self.g_mm, self.x_mm)
         below = u - self.c_mm[0]
         above = u - self.c_mm[-1]
@@ -161,7 +162,7 @@ def axis_spec(axis: Axis) -> tuple[AxisPulseSpec, bool]:
         steps_num=num,
         steps_den=den,
         direction_invert=so.direction_invert,
-        backlash_steps=int(math.floor(abs(so.backlash_mm) * r + 0.5)),
+        backlash_steps=math.floor(abs(so.backlash_mm) * r + 0.5),
         backlash_mode=so.backlash_mode if so.backlash_mm else BacklashMode.NONE,
         backlash_a_rate_hz=max(so.backlash_a_speed_mm_min * per_s, 1.0),
         backlash_rate_hz=max(so.backlash_speed_mm_min * per_s, 1.0),

@@ -69,7 +69,8 @@ def write_npz(chunks: Iterable[StepChunk], out: IO[bytes]) -> None:
         for chunk in chunks:
             names = chunk.layout.axes
             for name, a in zip(names, chunk.axes, strict=True):
-                cols = (a.t_ns, a.direction, a.backlash, a.phase, a.dir_t_ns, a.dir_level)
+                cols: tuple[np.ndarray, ...] = (  # type: ignore[type-arg]
+                    a.t_ns, a.direction, a.backlash, a.phase, a.dir_t_ns, a.dir_level)
                 for (fname, dtype), arr in zip(_NPZ_FIELDS, cols, strict=True):
                     key = f"{name}_{fname}"
                     if key not in files:
