@@ -34,7 +34,11 @@ def _parser() -> argparse.ArgumentParser:
                    help="-Werror turns warnings into errors")
     p.add_argument("--offsets", dest="offsets_file", help="work offsets table (TOML)")
     p.add_argument("--tools", dest="tools_file", help="tool table (TOML or LinuxCNC .tbl)")
-    p.add_argument("--report-format", default="text", choices=["text", "json"], help="timing report format")
+    p.add_argument("--report-format", default="text", choices=["text", "json", "html"], help="timing report format")
+    p.add_argument("--compare", default="", metavar="COLS",
+                   help="timing report columns: planner levels and/or machines, e.g. O0,O1,O2 or szgh-990mdb@O1")
+    p.add_argument("--annotate-time", action="store_true",
+                   help="timing: output the program with each block's elapsed time as a comment")
     p.add_argument("--version", action="version", version=f"cncc {__version__}")
     return p
 
@@ -60,7 +64,8 @@ def build_options(ns: argparse.Namespace, error: Any) -> Any:
 
     opts = Options(inputs=list(ns.inputs), dialect=ns.dialect, target=ns.target, machine=ns.machine,
                    emit=ns.emit, output=ns.output, opt_level=ns.opt_level, offsets_file=ns.offsets_file,
-                   tools_file=ns.tools_file, report_format=ns.report_format)
+                   tools_file=ns.tools_file, report_format=ns.report_format,
+                   compare=ns.compare, annotate_time=ns.annotate_time)
     for flag in ns.flags:
         if flag == "syntax-only":
             opts.syntax_only = True

@@ -44,6 +44,8 @@ class Options:
     block_delete: bool = True
     repair_arcs: bool = False
     report_format: str = "text"
+    compare: str = ""  # timing report columns: "O0,O1,O2" or machine names (NAME@O1)
+    annotate_time: bool = False  # timing: the program with elapsed times as comments
 
 
 @dataclass(slots=True)
@@ -210,9 +212,13 @@ def run_backend(cmds: Iterator[Command], src: SourceFile, sources: SourceMap, di
             target = t
         return emit_gcode(cmds, target)
     if opts.emit == "timing":
-        from cncc.backends.report import timing_report
+        from cncc.backends.timing import timing_report
 
-        return timing_report(list(cmds), src, sources, machine, opts.opt_level, opts.report_format, sink)
+        cmd_list = list(cmds)
+        runs = timing_runs(cmd_list, machine, opts, sink)
+        color = opts.output in (None, "-") and sys.stdout.isatty()
+        return timing_report(cmd_list, runs, src, sources, dialect, opts.report_format, sink,
+                             annotate=opts.annotate_time, color=color)
     if opts.emit == "none":
         for _ in cmds:
             pass
@@ -221,6 +227,35 @@ def run_backend(cmds: Iterator[Command], src: SourceFile, sources: SourceMap, di
     for _ in cmds:
         pass
     return iter(())
+
+
+def plan_trajectory(cmds: list[Command], machine: MachineModel, level: int, sink: DiagnosticSink) -> tuple[Any, str]:
+    """(Trajectory, how it was made) for the timing report: the nominal one at -O0, else the planner's."""
+    if level == 0:
+        from cncc.backends.nominal import nominal_trajectory
+
+        return nominal_trajectory(cmds, machine), "nominal: length / feed"
+    from cncc.passes.plan import plan_commands
+
+    return plan_commands(cmds, machine, level=level, sink=sink), f"planned -O{level}"
+
+
+def timing_runs(cmds: list[Command], machine: MachineModel, opts: Options, sink: DiagnosticSink) -> list[Any]:
+    """One planned Run per report column (``--compare``, else -O<level> and the nominal estimate)."""
+    from cncc.backends.timing import Run, default_columns, parse_compare
+
+    specs = parse_compare(opts.compare, opts.opt_level) if opts.compare else default_columns(opts.opt_level)
+    if isinstance(specs, str):
+        sink.emit(dg.BAD_OPTION, NO_SPAN, specs)
+        return []
+    runs = []
+    for spec in specs:
+        model = machine if spec.machine is None else resolve_machine(spec.machine, sink)
+        if model is None:
+            return []
+        traj, how = plan_trajectory(cmds, model, spec.level, sink)
+        runs.append(Run(spec.label, model, spec.level, traj, how, nominal=spec.level == 0))
+    return runs
 
 
 # ---- outputs ---------------------------------------------------------------------------------

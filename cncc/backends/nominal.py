@@ -1,51 +1,76 @@
-"""Nominal timing (``--emit=timing -O0``): length / feed, as CAM systems estimate.
+"""Nominal timing (``-O0``): length / feed, as CAM systems estimate.
 
-Rapids run at the machine's rapid rate (interpolated: the slowest axis sets the
-time; independent: each axis at its own rate, the longest wins), feeds at the
-programmed feed along the path (arcs along their helical length), dwells for their
-time, and tool changes / spindle starts for the machine model's times.  No
-acceleration is modelled: that is what the planner levels add.
+Consumes IR commands and a machine model; produces either plain sums
+(:func:`nominal_timing`) or a :class:`~cncc.ir.trajectory.Trajectory` of
+constant-velocity phases (:func:`nominal_trajectory`) that the timing report reads
+exactly like a planned one.
+
+Rapids run at the machine's rapid rates (interpolated: the slowest axis sets the
+time and all axes finish together; independent: each axis at its own rate, the
+longest wins, a dog-leg path), feeds at the programmed feed along the path (arcs
+along their helical length), with no acceleration at all: that is what the planner
+levels add.  Non-motion commands (dwells, tool changes, spindle starts, stops) are
+events; :mod:`cncc.backends.timing.events` gives their times.
 """
 
 from __future__ import annotations
 
 import math
-from collections.abc import Iterable
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 from cncc.ir import Arc, Command, Dwell, Linear, Rapid, Spindle, SpindleState, Stop, StopKind, ToolChange
-from cncc.ir.machine import MachineModel
+from cncc.ir.machine import MachineModel, RapidMode
+
+if TYPE_CHECKING:
+    from cncc.ir.trajectory import Trajectory
+
+ARC_CHORD_MAX_RAD = math.radians(10.0)
+"""Nominal trajectories draw arcs as chords of at most this sweep (for plots only:
+the time is the helical length / feed either way)."""
 
 
 @dataclass(slots=True)
 class NominalTiming:
     total_s: float = 0.0
     by_category_s: dict[str, float] = field(default_factory=dict)
-    by_line_s: dict[tuple[int, int], float] = field(default_factory=dict)  # (source_id, offset of line) -> s
+    by_line_s: dict[tuple[int, int], float] = field(default_factory=dict)  # (source_id, span start) -> s
     by_command: list[tuple[Command, float, str]] = field(default_factory=list)
 
 
-def arc_length_mm(c: Arc) -> float:
+def arc_sweep_rad(c: Arc) -> float:
+    """Signed sweep of an arc (positive counter-clockwise), full turns included."""
     p = c.plane
-    i, j, n = p.first, p.second, p.normal
-    r = math.hypot(c.start[i] - c.center[i], c.start[j] - c.center[j])
+    i, j = p.first, p.second
     a0 = math.atan2(c.start[j] - c.center[j], c.start[i] - c.center[i])
     a1 = math.atan2(c.end[j] - c.center[j], c.end[i] - c.center[i])
     sweep = a1 - a0
     if c.turns > 0:
         while sweep <= 1e-12:
             sweep += 2 * math.pi
-        sweep += 2 * math.pi * (c.turns - 1)
-    else:
-        while sweep >= -1e-12:
-            sweep -= 2 * math.pi
-        sweep -= 2 * math.pi * (-c.turns - 1)
-    planar = abs(sweep) * r
+        return sweep + 2 * math.pi * (c.turns - 1)
+    while sweep >= -1e-12:
+        sweep -= 2 * math.pi
+    return sweep - 2 * math.pi * (-c.turns - 1)
+
+
+def arc_length_mm(c: Arc) -> float:
+    p = c.plane
+    i, j, n = p.first, p.second, p.normal
+    r = math.hypot(c.start[i] - c.center[i], c.start[j] - c.center[j])
+    planar = abs(arc_sweep_rad(c)) * r
     helix = c.end[n] - c.start[n]
     return math.hypot(planar, helix)
 
 
-def rapid_time_s(start: tuple[float, ...], end: tuple[float, ...], machine: MachineModel) -> float:
+def linear_length_mm(c: Linear) -> float:
+    """Path length of a feed move: XYZ length, or the rotary length when only A/B/C move."""
+    length = math.dist(c.start[:3], c.end[:3])
+    return length if length > 0.0 else math.dist(c.start, c.end)
+
+
+def rapid_time_s(start: Sequence[float], end: Sequence[float], machine: MachineModel) -> float:
     t = 0.0
     for k, axis in enumerate(machine.axes[: len(start)]):
         d = abs(end[k] - start[k])
@@ -54,33 +79,34 @@ def rapid_time_s(start: tuple[float, ...], end: tuple[float, ...], machine: Mach
     return t
 
 
+def feed_time_s(length_mm: float, feed_mm_min: float) -> float:
+    return length_mm / (feed_mm_min / 60.0) if feed_mm_min > 0 else 0.0
+
+
 def command_time_s(c: Command, machine: MachineModel) -> tuple[float, str]:
     match c:
         case Rapid():
             return rapid_time_s(c.start, c.end, machine), "rapid"
         case Linear():
-            length = math.dist(c.start[:3], c.end[:3])
-            if length == 0.0:
-                length = math.dist(c.start, c.end)
-            return (length / (c.feed_mm_min / 60.0) if c.feed_mm_min > 0 else 0.0), "feed"
+            return feed_time_s(linear_length_mm(c), c.feed_mm_min), "feed"
         case Arc():
-            return (arc_length_mm(c) / (c.feed_mm_min / 60.0) if c.feed_mm_min > 0 else 0.0), "arc"
+            return feed_time_s(arc_length_mm(c), c.feed_mm_min), "arc"
         case Dwell():
             return c.seconds, "dwell"
         case ToolChange():
-            return machine.tool_change_s, "tool change"
+            return machine.tool_change_s, "tool_change"
         case Spindle():
             if c.state in (SpindleState.CW, SpindleState.CCW):
                 return machine.spindle_ramp_s, "spindle"
             return 0.0, "spindle"
         case Stop():
             if c.kind is StopKind.OPTIONAL_STOP or c.kind is StopKind.PROGRAM_STOP:
-                return machine.optional_stop_s, "stop"
-            return 0.0, "stop"
+                return machine.optional_stop_s, "wait"
+            return 0.0, "wait"
     return 0.0, ""
 
 
-def nominal_timing(cmds: Iterable[Command], machine: MachineModel, line_of: dict[int, int] | None = None) -> NominalTiming:
+def nominal_timing(cmds: Iterable[Command], machine: MachineModel) -> NominalTiming:
     """Sum the nominal times; ``by_line_s`` is keyed by (source id, span start)."""
     out = NominalTiming()
     for c in cmds:
@@ -93,3 +119,104 @@ def nominal_timing(cmds: Iterable[Command], machine: MachineModel, line_of: dict
         out.by_line_s[key] = out.by_line_s.get(key, 0.0) + t
         out.by_command.append((c, t, cat))
     return out
+
+
+# ---- constant-velocity trajectory ------------------------------------------------------
+@dataclass(slots=True)
+class _Rows:
+    """Phases under construction (lists of plain floats; turned into arrays at the end)."""
+
+    dur_s: list[float] = field(default_factory=list)
+    p0_mm: list[Sequence[float]] = field(default_factory=list)
+    v_mm_s: list[Sequence[float]] = field(default_factory=list)
+    cmd: list[int] = field(default_factory=list)
+    limit: list[int] = field(default_factory=list)
+
+    def add(self, dur_s: float, p0: Sequence[float], p1: Sequence[float], cmd: int, limit: int) -> None:
+        if dur_s <= 0.0:
+            return
+        self.dur_s.append(dur_s)
+        self.p0_mm.append(tuple(p0))
+        self.v_mm_s.append(tuple((b - a) / dur_s for a, b in zip(p0, p1, strict=True)))
+        self.cmd.append(cmd)
+        self.limit.append(limit)
+
+
+def _rapid_rows(rows: _Rows, c: Rapid, i: int, machine: MachineModel, limit: int) -> None:
+    total_s = rapid_time_s(c.start, c.end, machine)
+    if machine.rapid_mode is not RapidMode.INDEPENDENT:
+        rows.add(total_s, c.start, c.end, i, limit)
+        return
+    # each axis at its own rate: a new phase wherever an axis arrives
+    finish_s = [0.0] * len(c.start)
+    for k, axis in enumerate(machine.axes[: len(c.start)]):
+        d = abs(c.end[k] - c.start[k])
+        finish_s[k] = d / (axis.rapid_mm_min / 60.0) if d > 0 else 0.0
+    for k in range(len(machine.axes), len(c.start)):  # axes the machine does not know: along the whole move
+        finish_s[k] = total_s if c.end[k] != c.start[k] else 0.0
+
+    def at(t_s: float) -> list[float]:
+        return [s + (e - s) * (min(t_s, f) / f if f > 0 else 1.0)
+                for s, e, f in zip(c.start, c.end, finish_s, strict=True)]
+
+    t_prev = 0.0
+    for t in sorted(set(finish_s)):
+        if t > t_prev:
+            rows.add(t - t_prev, at(t_prev), at(t), i, limit)
+            t_prev = t
+
+
+def _arc_point(c: Arc, u: float, sweep: float) -> list[float]:
+    i, j, n = c.plane.first, c.plane.second, c.plane.normal
+    r0 = math.hypot(c.start[i] - c.center[i], c.start[j] - c.center[j])
+    r1 = math.hypot(c.end[i] - c.center[i], c.end[j] - c.center[j])
+    a0 = math.atan2(c.start[j] - c.center[j], c.start[i] - c.center[i])
+    r, a = r0 + (r1 - r0) * u, a0 + sweep * u
+    p = [s + (e - s) * u for s, e in zip(c.start, c.end, strict=True)]
+    p[i] = c.center[i] + r * math.cos(a)
+    p[j] = c.center[j] + r * math.sin(a)
+    p[n] = c.start[n] + (c.end[n] - c.start[n]) * u
+    return p
+
+
+def _arc_rows(rows: _Rows, c: Arc, i: int, limit: int) -> None:
+    total_s = feed_time_s(arc_length_mm(c), c.feed_mm_min)
+    sweep = arc_sweep_rad(c)
+    n = max(1, math.ceil(abs(sweep) / ARC_CHORD_MAX_RAD))
+    prev: Sequence[float] = c.start
+    for k in range(1, n + 1):
+        nxt = c.end if k == n else _arc_point(c, k / n, sweep)
+        rows.add(total_s / n, prev, nxt, i, limit)
+        prev = nxt
+
+
+def nominal_trajectory(cmds: Sequence[Command], machine: MachineModel) -> Trajectory:
+    """A Trajectory of constant-velocity phases with the nominal (-O0) times.
+
+    One phase per rapid (interpolated) or per axis arrival (independent), one per
+    linear move, one per chord of an arc.  ``cmd_index`` indexes ``cmds``; the limit
+    is ``RAPID`` for rapids and ``FEED`` for feed moves.  Non-motion commands get no
+    phase.
+    """
+    import numpy as np
+
+    from cncc.ir.frame import AXES
+    from cncc.ir.trajectory import Limit, Trajectory
+
+    rows = _Rows()
+    for i, c in enumerate(cmds):
+        match c:
+            case Rapid():
+                _rapid_rows(rows, c, i, machine, int(Limit.RAPID))
+            case Linear():
+                rows.add(feed_time_s(linear_length_mm(c), c.feed_mm_min), c.start, c.end, i, int(Limit.FEED))
+            case Arc():
+                _arc_rows(rows, c, i, int(Limit.FEED))
+    if not rows.dur_s:
+        return Trajectory.empty(AXES)
+    dur = np.asarray(rows.dur_s, dtype=np.float64)
+    t0 = np.concatenate(([0.0], np.cumsum(dur)[:-1]))
+    zeros = np.zeros((len(dur), len(AXES)))
+    return Trajectory(t0, dur, np.asarray(rows.p0_mm, dtype=np.float64), np.asarray(rows.v_mm_s, dtype=np.float64),
+                      zeros, zeros.copy(), np.asarray(rows.cmd, dtype=np.int64),
+                      np.asarray(rows.limit, dtype=np.int8), AXES)

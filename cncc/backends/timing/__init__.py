@@ -1,0 +1,60 @@
+"""Timing reports (``--emit=timing``): where the cycle time goes.
+
+Consumes the IR commands the planner saw and one :class:`Run` (a planned
+:class:`~cncc.ir.trajectory.Trajectory` for a machine and level) per column; the
+driver plans them (this package never imports the planner).  Produces a terminal
+table (:mod:`.text`), JSON with a schema (:mod:`.jsonout`, ``schema.json``), an
+offline HTML page with SVG plots (:mod:`.html`), or the program annotated with the
+elapsed time of each block (:mod:`.annotate`).
+
+Times add up exactly: see :mod:`.model`.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator, Sequence
+
+from cncc import diagnostics as dg
+from cncc.backends.timing.columns import ColumnSpec, default_columns, parse_compare
+from cncc.backends.timing.model import Run, TimingReport
+from cncc.diagnostics import DiagnosticSink
+from cncc.dialects import Dialect
+from cncc.ir import Command
+from cncc.source import NO_SPAN, SourceFile, SourceMap
+
+__all__ = ["FORMATS", "ColumnSpec", "Run", "TimingReport", "default_columns", "parse_compare", "timing_report"]
+
+FORMATS = ("text", "json", "html")
+
+
+def timing_report(cmds: Sequence[Command], runs: Sequence[Run], src: SourceFile, sources: SourceMap,
+                  dialect: Dialect, fmt: str, sink: DiagnosticSink, *, annotate: bool = False,
+                  color: bool = False, top_n: int = 10) -> Iterator[str]:
+    """Render the report of ``runs`` (the first is the primary column) in ``fmt``.
+
+    With ``annotate`` the output is instead the program ``src`` with each block's
+    elapsed time (primary column) as a comment in the dialect's comment syntax.
+    """
+    from cncc.backends.timing.aggregate import build_report
+
+    if fmt not in FORMATS:
+        sink.emit(dg.BAD_OPTION, NO_SPAN, f"unknown --report-format={fmt} (choose from {', '.join(FORMATS)})")
+        return iter(())
+    if not runs:
+        return iter(())
+    rep = build_report(cmds, runs, sources, src.name, dialect.name, top_n)
+    if annotate:
+        from cncc.backends.timing.annotate import annotate_time
+
+        return iter((annotate_time(rep, src, dialect),))
+    if fmt == "json":
+        from cncc.backends.timing.jsonout import render_json
+
+        return iter((render_json(rep),))
+    if fmt == "html":
+        from cncc.backends.timing.html import render_html
+
+        return iter((render_html(rep, cmds),))
+    from cncc.backends.timing.text import render_text
+
+    return iter((render_text(rep, color),))

@@ -1,0 +1,185 @@
+"""Aggregate trajectories and events into a :class:`TimingReport`.
+
+Consumes the command list the planner saw (``Trajectory.cmd_index`` indexes it), the
+source map, and one :class:`Run` per column; produces per-line, per-tool and
+per-category times in integer nanoseconds.  Phase ``k`` is charged the time from its
+start ``t0_s[k]`` to the next phase's start (the last phase up to the trajectory's
+end), so phase times add up to ``Trajectory.duration_total_s`` exactly after
+rounding each boundary once.  A command with no phase is an event
+(:mod:`.events`); a command the planner gave phases (e.g. a dwell planned as a
+standstill) is timed by its phases only, never twice.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Sequence
+
+from cncc.backends.timing.events import CATEGORIES, EVENT_TYPES, EventTimer
+from cncc.backends.timing.model import (
+    LIMIT_KEYS,
+    MOTION_LIMITS,
+    NS_PER_S,
+    Column,
+    LineRow,
+    ProgramIndex,
+    Run,
+    TimingReport,
+    to_ns,
+)
+from cncc.backends.timing.progress import track
+from cncc.ir import Arc, Command, Linear, Rapid, ToolChange
+from cncc.ir.machine import MachineModel
+from cncc.source import SourceMap
+
+_N_WORD = re.compile(r"\s*/?\s*([Nn]\s*\d+)")
+_EVENT_LIMIT = {"dwell": "program", "tool_change": "machine", "spindle": "machine", "wait": "operator"}
+_MOTION_CAT = {Rapid: 0, Linear: 1, Arc: 2}
+_ZERO_MACHINE = MachineModel("categories only", (), tool_change_s=0.0, spindle_ramp_s=0.0)
+
+
+def build_index(cmds: Sequence[Command]) -> ProgramIndex:
+    """Line, tool and category of every command (one pass over the commands)."""
+    import numpy as np
+
+    n = len(cmds)
+    cmd_line = np.zeros(n, dtype=np.int64)
+    cmd_tool = np.full(n, -1, dtype=np.int64)
+    cmd_cat = np.full(n, -1, dtype=np.int64)
+    keys: dict[tuple[int, int], int] = {}
+    event_cmds: list[int] = []
+    probe = EventTimer(_ZERO_MACHINE)
+    tool = -1
+    last_start = (-2, -1)
+    line_id = 0
+    for i, c in enumerate(track(cmds, n, "indexing blocks")):
+        span = c.span
+        if (span.source_id < 0 or span.start < 0) and keys:
+            pass  # a generated command without a real span: charge it to the block before it
+        elif (span.source_id, span.start) != last_start:  # consecutive commands often share a start
+            last_start = (span.source_id, span.start)
+            line_id = keys.setdefault((span.source_id, span.start), len(keys))
+        cmd_line[i] = line_id
+        if isinstance(c, ToolChange):
+            tool = c.tool
+        cmd_tool[i] = tool
+        cat = _MOTION_CAT.get(type(c))
+        if cat is None and isinstance(c, EVENT_TYPES):
+            event_cmds.append(i)
+            ev = probe.event(c)
+            cat = CATEGORIES.index(ev.category) if ev is not None else None
+        cmd_cat[i] = -1 if cat is None else cat
+    return ProgramIndex(list(keys), cmd_line, cmd_tool, cmd_cat, event_cmds)
+
+
+def _span_starts_to_lines(index: ProgramIndex, sources: SourceMap) -> None:
+    """Turn the (source, span start) keys into (source, line) keys, merging same-line spans."""
+    import numpy as np
+
+    remap: dict[tuple[int, int], int] = {}
+    new_id = np.zeros(len(index.line_keys), dtype=np.int64)
+    for k, (sid, start) in enumerate(index.line_keys):
+        src = sources.get(sid)
+        line = src.position(start).line if src is not None else 0
+        new_id[k] = remap.setdefault((sid, line), len(remap))
+    index.line_keys = list(remap)
+    index.cmd_line = new_id[index.cmd_line] if len(index.cmd_line) else index.cmd_line
+
+
+def phase_ns(run: Run) -> tuple[int, object]:
+    """(duration of the trajectory in ns, per-phase ns array) with exact telescoping sums."""
+    import numpy as np
+
+    traj = run.trajectory
+    total_ns = to_ns(traj.duration_total_s)
+    if traj.phase_count == 0:
+        return total_ns, np.zeros(0, dtype=np.int64)
+    bounds = np.rint(traj.t0_s * NS_PER_S).astype(np.int64)
+    bounds[0] = 0
+    return total_ns, np.diff(np.append(bounds, total_ns))
+
+
+def column(run: Run, cmds: Sequence[Command], index: ProgramIndex) -> Column:
+    import numpy as np
+
+    n_lines, n_cmds = len(index.line_keys), len(cmds)
+    traj = run.trajectory
+    motion_ns, dur_ns = phase_ns(run)
+    dur = np.asarray(dur_ns, dtype=np.int64)
+    ci = traj.cmd_index.astype(np.int64)
+    cmd_ns = np.zeros(n_cmds, dtype=np.int64)
+    line_ns = np.zeros(n_lines, dtype=np.int64)
+    line_limit = np.zeros((n_lines, len(LIMIT_KEYS)), dtype=np.int64)
+    np.add.at(cmd_ns, ci, dur)
+    limit = np.clip(traj.limit.astype(np.int64), 0, len(MOTION_LIMITS) - 1)
+    np.add.at(line_limit, (index.cmd_line[ci], limit), dur)
+    covered = np.zeros(n_cmds, dtype=bool)
+    covered[ci] = True
+    cat_of_phase = np.where(index.cmd_cat[ci] >= 0, index.cmd_cat[ci], 1)  # a phase of a timeless command: feed
+    tools = sorted({int(t) for t in np.unique(index.cmd_tool)}) if n_cmds else []
+    tool_pos = {t: k for k, t in enumerate(tools)}
+    tool_cat = np.zeros((len(tools), len(CATEGORIES)), dtype=np.int64)
+    if len(ci):
+        tool_idx = np.searchsorted(np.asarray(tools, dtype=np.int64), index.cmd_tool[ci])
+        np.add.at(tool_cat, (tool_idx, cat_of_phase), dur)
+    events, event_ns, operator_ns = [], 0, 0
+    timer = EventTimer(run.machine)
+    for i in index.event_cmds:
+        ev = timer.event(cmds[i])
+        if ev is None or covered[i]:
+            continue
+        ns = to_ns(ev.seconds)
+        events.append((i, ns, ev.category, ev.operator_dependent, ev.what))
+        event_ns += ns
+        operator_ns += ns if ev.operator_dependent else 0
+        cmd_ns[i] += ns
+        line_limit[index.cmd_line[i], LIMIT_KEYS.index(_EVENT_LIMIT[ev.category])] += ns
+        tool_cat[tool_pos[int(index.cmd_tool[i])], CATEGORIES.index(ev.category)] += ns
+        if ev.operator_dependent:
+            index.op_dependent_lines.add(int(index.cmd_line[i]))
+    np.add.at(line_ns, index.cmd_line, cmd_ns)
+    category_ns = {cat: int(tool_cat[:, k].sum()) for k, cat in enumerate(CATEGORIES)}
+    tool_ns = {t: {cat: int(tool_cat[k, j]) for j, cat in enumerate(CATEGORIES)} for t, k in tool_pos.items()}
+    return Column(run, motion_ns, event_ns, line_ns, line_limit, cmd_ns, category_ns, tool_ns, operator_ns, events)
+
+
+def _dominant(values: dict[str, int], fallback: str) -> str:
+    best = max(values.items(), key=lambda kv: kv[1], default=(fallback, 0))
+    return best[0] if best[1] > 0 else fallback
+
+
+def line_rows(columns: list[Column], index: ProgramIndex, sources: SourceMap) -> list[LineRow]:
+    import numpy as np
+
+    primary = columns[0]
+    elapsed = np.cumsum(primary.cmd_ns)
+    line_end = np.zeros(len(index.line_keys), dtype=np.int64)
+    np.maximum.at(line_end, index.cmd_line, elapsed)
+    cat_ns = np.zeros((len(index.line_keys), len(CATEGORIES)), dtype=np.int64)
+    has_cat = index.cmd_cat >= 0
+    np.add.at(cat_ns, (index.cmd_line[has_cat], index.cmd_cat[has_cat]), primary.cmd_ns[has_cat])
+    rows = []
+    for k, (sid, line) in enumerate(index.line_keys):
+        src = sources.get(sid)
+        text = src.line_text(line) if src is not None else ""
+        m = _N_WORD.match(text)
+        limits = {key: int(v) for key, v in zip(LIMIT_KEYS, primary.line_limit_ns[k], strict=True) if v}
+        cats = {cat: int(v) for cat, v in zip(CATEGORIES, cat_ns[k], strict=True)}
+        rows.append(LineRow(
+            index=k, file=src.name if src is not None else "<generated>", line=line,
+            n=m.group(1).replace(" ", "").upper() if m else "", text=text.strip(),
+            times_ns=tuple(int(c.line_ns[k]) for c in columns), category=_dominant(cats, ""),
+            limited_by=_dominant(limits, ""), limits_ns=limits, elapsed_ns=int(line_end[k]),
+            operator_dependent=k in index.op_dependent_lines))
+    return rows
+
+
+def build_report(cmds: Sequence[Command], runs: Sequence[Run], sources: SourceMap, file: str, dialect: str,
+                 top_n: int = 10) -> TimingReport:
+    """The report for ``runs`` (the first is the primary column) over ``cmds``."""
+    index = build_index(cmds)
+    _span_starts_to_lines(index, sources)
+    columns = [column(run, cmds, index) for run in runs]
+    nominal = next((k for k, r in enumerate(runs) if r.nominal), None)
+    return TimingReport(file, dialect, columns, nominal, line_rows(columns, index, sources), index, top_n)
+

@@ -1,0 +1,62 @@
+"""``--annotate-time``: the program with each block's elapsed time as a comment.
+
+Consumes a :class:`TimingReport` (its primary column) and the program text;
+produces the same text with ``(t=12.345 s +1.200 s)`` -- the wall time when the
+block's last command ends, and the block's own time -- on every line that produced
+commands, written in the dialect's first comment syntax: parentheses go before any
+``//`` or ``;`` tail of the block, ``;`` and ``//`` comments go at the end of the
+line (appended to an existing tail comment).  Lines that produced nothing (``%``,
+blank lines, control flow) are left as they were, so the result compiles to the same
+motion.
+"""
+
+from __future__ import annotations
+
+from cncc.backends.timing.model import TimingReport, to_s
+from cncc.dialects import Dialect
+from cncc.source import SourceFile
+
+_OPENERS = {"paren": "(", "semicolon": ";", "slash": "//"}
+
+
+def _tail_start(text: str, dialect: Dialect) -> int:
+    """Where a tail comment or the block end begins (outside parentheses), else the end."""
+    slash = "slash" in dialect.comments
+    semi = "semicolon" in dialect.comments or dialect.block_end == ";"
+    depth = 0
+    for k, ch in enumerate(text):
+        if ch == "(":
+            depth += 1
+        elif ch == ")" and depth:
+            depth -= 1
+        elif depth == 0 and ((slash and text.startswith("//", k)) or (semi and ch == ";")):
+            return k
+    return len(text)
+
+
+def annotate_line(text: str, note: str, dialect: Dialect) -> str:
+    """``text`` (no line ending) with ``note`` added as a comment of ``dialect``."""
+    style = dialect.comments[0] if dialect.comments else "paren"
+    body = text.rstrip()
+    cut = _tail_start(body, dialect)
+    if style == "paren":
+        head = body[:cut].rstrip()
+        tail = body[cut:]
+        return f"{head} ({note})" + (f" {tail}" if tail else "")
+    opener = _OPENERS.get(style, ";")
+    if body[cut:].startswith(opener):
+        return f"{body} {note}"  # the line ends in a comment of this style already: extend it
+    return f"{body} {opener} {note}"
+
+
+def annotate_time(rep: TimingReport, src: SourceFile, dialect: Dialect) -> str:
+    notes: dict[int, str] = {}
+    for row, (sid, line) in zip(rep.lines, rep.index.line_keys, strict=True):
+        if sid == src.source_id:
+            notes[line] = f"t={to_s(row.elapsed_ns):.3f} s +{to_s(row.times_ns[0]):.3f} s"
+    out = []
+    for number, raw in enumerate(src.text.splitlines(keepends=True), 1):
+        body = raw.rstrip("\r\n")
+        ending = raw[len(body):]
+        out.append(annotate_line(body, notes[number], dialect) + ending if number in notes else raw)
+    return "".join(out)

@@ -1,0 +1,133 @@
+"""What the timing report is made of: the program index, one column per plan, line rows.
+
+Times are integers in nanoseconds (``_ns``) so that sums are exact: a column's
+total is its trajectory duration plus its event times, and the per-line, per-block,
+per-tool and per-category times each add up to that total to the nanosecond.
+Seconds (``_s``) are derived for display only.
+
+Array shapes: ``n`` commands, ``L`` source lines that produced commands,
+``K`` = ``len(LIMIT_KEYS)``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
+
+from cncc.ir.machine import MachineModel
+
+if TYPE_CHECKING:
+    import numpy as np
+    import numpy.typing as npt
+
+    from cncc.ir.trajectory import Trajectory
+
+    I64 = npt.NDArray[np.int64]
+
+NS_PER_S = 1_000_000_000
+
+MOTION_LIMITS: tuple[str, ...] = ("none", "feed", "accel", "jerk", "corner", "axis_velocity", "step_rate", "rapid",
+                                  "centripetal")
+"""Names of :class:`cncc.ir.trajectory.Limit` values, indexed by the value."""
+
+EVENT_LIMITS: tuple[str, ...] = ("program", "machine", "operator")
+"""What sets an event's time: the program (dwell), the machine model, an operator."""
+
+LIMIT_KEYS: tuple[str, ...] = MOTION_LIMITS + EVENT_LIMITS
+
+
+def to_ns(t_s: float) -> int:
+    return round(t_s * NS_PER_S)
+
+
+def to_s(t_ns: int) -> float:
+    return t_ns / NS_PER_S
+
+
+@dataclass(frozen=True, slots=True)
+class Run:
+    """One column of the report: a trajectory planned for a machine at a level."""
+
+    label: str
+    machine: MachineModel
+    level: int
+    trajectory: Trajectory
+    planner: str = ""  # how it was produced, e.g. "nominal (length / feed)"
+    nominal: bool = False
+
+
+@dataclass(slots=True)
+class ProgramIndex:
+    """Column-independent facts about the commands: line, tool and category of each."""
+
+    line_keys: list[tuple[int, int]]  # (source_id, 1-based line) in first-use order
+    cmd_line: I64  # (n,) index into line_keys
+    cmd_tool: I64  # (n,) tool in the spindle (-1: none yet)
+    cmd_cat: I64  # (n,) index into CATEGORIES (-1: no time)
+    event_cmds: list[int]  # indices of commands that may be events
+    op_dependent_lines: set[int] = field(default_factory=set)
+
+
+@dataclass(slots=True)
+class Column:
+    """The times of one :class:`Run`, aggregated."""
+
+    run: Run
+    motion_ns: int
+    event_ns: int
+    line_ns: I64  # (L,)
+    line_limit_ns: I64  # (L, K)
+    cmd_ns: I64  # (n,) motion + event time of each command
+    category_ns: dict[str, int]
+    tool_ns: dict[int, dict[str, int]]  # tool -> category -> ns
+    operator_ns: int  # time of operator-dependent events (included in the total)
+    event_list: list[tuple[int, int, str, bool, str]]  # (cmd, ns, category, operator-dependent, what)
+
+    @property
+    def total_ns(self) -> int:
+        return self.motion_ns + self.event_ns
+
+
+@dataclass(frozen=True, slots=True)
+class LineRow:
+    """One source line that produced commands (times of every column)."""
+
+    index: int
+    file: str
+    line: int
+    n: str  # the block's N word as written ("N010"), "" if none
+    text: str
+    times_ns: tuple[int, ...]  # one per column
+    category: str  # the category with the most time (primary column)
+    limited_by: str  # the LIMIT_KEYS entry with the most time (primary column)
+    limits_ns: dict[str, int]  # primary column, non-zero entries
+    elapsed_ns: int  # primary column: wall time at the end of this line's last command
+    operator_dependent: bool
+
+
+@dataclass(slots=True)
+class TimingReport:
+    file: str
+    dialect: str
+    columns: list[Column]
+    nominal: int | None  # index of the nominal column, if any
+    lines: list[LineRow]
+    index: ProgramIndex
+    top_n: int = 10
+
+    @property
+    def primary(self) -> Column:
+        return self.columns[0]
+
+    def blocks(self) -> list[tuple[str, tuple[int, ...]]]:
+        """Time per ``N`` label (lines without one under ``""``), in first-use order."""
+        acc: dict[str, list[int]] = {}
+        for row in self.lines:
+            cur = acc.setdefault(row.n, [0] * len(self.columns))
+            for k, t in enumerate(row.times_ns):
+                cur[k] += t
+        return [(n, tuple(v)) for n, v in acc.items()]
+
+    def top(self) -> list[LineRow]:
+        ranked = sorted(self.lines, key=lambda r: (-r.times_ns[0], r.index))
+        return [r for r in ranked[: self.top_n] if r.times_ns[0] > 0]

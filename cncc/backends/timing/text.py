@@ -1,0 +1,103 @@
+"""The terminal timing report (``--report-format=text``, the default), drawn with rich.
+
+Consumes a :class:`TimingReport`; produces text: a summary, time per category and
+per tool, the slowest blocks with what limited them, and the per-line table (up to
+:data:`MAX_LINES` lines; the JSON report always has every line).  Colour only when
+the caller says the output is a terminal.
+"""
+
+from __future__ import annotations
+
+import io
+
+from cncc.backends.timing.events import CATEGORIES
+from cncc.backends.timing.model import LineRow, TimingReport, to_s
+
+MAX_LINES = 400
+WIDTH = 132
+
+
+def _s(ns: int) -> str:
+    return f"{to_s(ns):.3f}"
+
+
+def _gap(planned_ns: int, nominal_ns: int) -> str:
+    if nominal_ns == 0:
+        return "" if planned_ns == 0 else "n/a"
+    return f"{(planned_ns - nominal_ns) / nominal_ns * 100:+.1f}%"
+
+
+def render_text(rep: TimingReport, color: bool = False) -> str:
+    from rich.console import Console
+    from rich.markup import escape
+    from rich.table import Table
+
+    buf = io.StringIO()
+    con = Console(file=buf, width=WIDTH, force_terminal=color, color_system="standard" if color else None,
+                  highlight=False, emoji=False)
+    cols = rep.columns
+    labels = [c.run.label for c in cols]
+    nom = rep.nominal
+    p = rep.primary
+    con.print(f"[bold]cycle time[/bold] of {escape(rep.file)} ({rep.dialect}) — primary column {labels[0]}: "
+              f"{p.run.planner}, machine {p.run.machine.name}")
+    for c in cols:
+        con.print(f"  {c.run.label:<24} total {_s(c.total_ns):>10} s = trajectory {_s(c.motion_ns)} s "
+                  f"+ events {_s(c.event_ns)} s")
+    if nom is not None and nom != 0:
+        con.print(f"  planned vs nominal: {_gap(p.total_ns, cols[nom].total_ns)} "
+                  f"({_s(p.total_ns - cols[nom].total_ns)} s the length/feed estimate misses)")
+    if p.operator_ns or any(r.operator_dependent for r in rep.lines):
+        con.print(f"  * operator-dependent stops and waits: {_s(p.operator_ns)} s assumed (machine model)")
+
+    def table(title: str, first: str) -> Table:
+        t = Table(title=title, title_justify="left", show_edge=False, pad_edge=False)
+        t.add_column(first)
+        for lab in labels:
+            t.add_column(f"{lab} [s]", justify="right")
+        return t
+
+    t = table("time per category", "category")
+    t.add_column("share", justify="right")
+    for cat in CATEGORIES:
+        vals = [c.category_ns[cat] for c in cols]
+        if any(vals):
+            share = f"{vals[0] / p.total_ns * 100:.1f}%" if p.total_ns else ""
+            t.add_row(cat.replace("_", " "), *map(_s, vals), share)
+    t.add_row("[bold]total[/bold]", *(_s(c.total_ns) for c in cols), "")
+    con.print(t)
+    t = table("time per tool", "tool")
+    for tool in sorted({k for c in cols for k, v in c.tool_ns.items() if any(v.values())}):
+        t.add_row("none" if tool < 0 else f"T{tool}", *(_s(sum(c.tool_ns.get(tool, {}).values())) for c in cols))
+    con.print(t)
+    con.print(_line_table(rep, rep.top(), f"the {rep.top_n} slowest blocks", labels))
+    shown = rep.lines[:MAX_LINES]
+    con.print(_line_table(rep, shown, "time per line", labels, elapsed=True))
+    if len(rep.lines) > MAX_LINES:
+        con.print(f"  ({len(rep.lines) - MAX_LINES} more lines: see --report-format=json)")
+    return buf.getvalue()
+
+
+def _line_table(rep: TimingReport, rows: list[LineRow], title: str, labels: list[str], elapsed: bool = False) -> object:
+    from rich.markup import escape
+    from rich.table import Table
+
+    multi_file = len({r.file for r in rep.lines}) > 1
+    t = Table(title=title, title_justify="left", show_edge=False, pad_edge=False)
+    t.add_column("line", justify="right")
+    t.add_column("N")
+    if elapsed:
+        t.add_column("elapsed [s]", justify="right")
+    for lab in labels:
+        t.add_column(f"{lab} [s]", justify="right")
+    t.add_column("limited by")
+    t.add_column("block", overflow="ellipsis", no_wrap=True, max_width=48)
+    for r in rows:
+        where = f"{r.file}:{r.line}" if multi_file else str(r.line)
+        cells = [escape(where), r.n]
+        if elapsed:
+            cells.append(_s(r.elapsed_ns))
+        cells += [_s(v) for v in r.times_ns]
+        cells += [r.limited_by.replace("_", " ") + (" *" if r.operator_dependent else ""), escape(r.text)]
+        t.add_row(*cells)
+    return t
