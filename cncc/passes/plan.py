@@ -1,0 +1,176 @@
+"""The ``plan`` pass: time parameterisation under the machine's limits -> Trajectory.
+
+API (for the driver and the backends)::
+
+    from cncc.passes.plan import plan_commands
+    traj = plan_commands(cmds, machine, level=2, sink=sink)   # cncc.ir.trajectory.Trajectory
+
+``cmds`` is a sequence of IR commands in machine coordinates (after ``frames`` and,
+normally, ``blend``); ``Trajectory.cmd_index`` refers to positions in ``cmds``.
+``level`` is the ``-O`` level:
+
+* ``0`` nominal: every segment at its speed cap, no acceleration (what CAM systems
+  estimate); velocity steps everywhere, so verify it with ``check_dynamics=False``.
+* ``1`` controller emulation: trapezoids with grbl/Klipper junction deviation, or the
+  SZGH-990MDb rules (speed step per axis, take-off speed, reversal speed, every G00 a
+  stop, dog-leg rapids) on machines whose ``corner_rule`` is ``speed-step``.
+* ``2`` (default) jerk-limited, near time-optimal: corners rounded within the blend
+  tolerance, TOPP (acceleration-limited optimum) on widened caps, then a moving-average
+  jerk filter on the path coordinate (``planning/fir.py``); single moves and dog-leg
+  rapids use ruckig's time-optimal 7-phase profile.
+* ``3`` like 2, then each run re-optimised with CasADi/IPOPT over windows
+  (``planning/optimal.py``): for studies and for judging ``-O2``.
+
+Stops: a run between two stops starts and ends at rest.  A non-motion command that
+forces a stop (dwell, tool change, spindle, stop, wait; M/S/T on SZGH — see
+:func:`cncc.passes.blend.forces_stop`) adds **no phase**: the trajectory simply has
+``v = 0`` at the boundary between the phases of the motions before and after it, and
+the timing backend adds the command's own time there.  Positions are continuous
+between runs as long as each motion starts where the previous one ended.
+
+Corner rule of a plan: :func:`cncc.machines.effective_corner_rule` ``(machine,
+level)``; pass it to ``verify`` so that -O1's junction-deviation corners are judged by
+the rule they follow.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Iterator, Sequence
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, ClassVar
+
+from cncc.diagnostics import DiagnosticSink
+from cncc.ir.commands import Command
+from cncc.ir.machine import CornerRule, MachineModel
+from cncc.passes import Pass, PassContext, register
+
+if TYPE_CHECKING:
+    from cncc.ir.trajectory import Trajectory
+    from cncc.passes.planning.emit import Rows
+    from cncc.passes.planning.limits import AxisLimits
+    from cncc.passes.planning.segments import Segments
+
+
+def plan_commands(cmds: Sequence[Command], machine: MachineModel, level: int = 2,
+                  sink: DiagnosticSink | None = None) -> Trajectory:
+    """Plan ``cmds`` at ``-O<level>`` (0..3) on ``machine``; see the module docstring."""
+    from cncc.machines import effective_corner_rule
+    from cncc.passes.planning.emit import assemble, merge_axes
+    from cncc.passes.planning.geometry import IndependentRapid, build_runs
+    from cncc.passes.planning.limits import axis_limits
+    from cncc.passes.planning.onedim import independent_axes
+
+    sink = sink if sink is not None else DiagnosticSink()
+    level = max(0, min(3, level))
+    limits = axis_limits(machine)
+    rule = effective_corner_rule(machine, level)
+    chunks: list[Rows] = []
+    for run in build_runs(cmds, machine, limits, level, sink):
+        if isinstance(run, IndependentRapid):
+            take_off = limits.start_mm_s if rule is CornerRule.SPEED_STEP else limits.start_mm_s * 0
+            profiles = independent_axes(run.start, run.end, level, limits.rapid_mm_s, limits.amax_mm_s2,
+                                        limits.jmax_mm_s3, take_off)
+            chunks.append(merge_axes(profiles, run.start, run.cmd, _rapid_limit()))
+            continue
+        chunks.extend(_plan_path(run, machine, limits, level, rule, sink))
+    return assemble(chunks)
+
+
+def _rapid_limit() -> int:
+    from cncc.ir.trajectory import Limit
+
+    return int(Limit.RAPID)
+
+
+def _plan_path(run: object, machine: MachineModel, limits: AxisLimits, level: int, rule: CornerRule,
+               sink: DiagnosticSink) -> list[Rows]:
+    from cncc.passes.planning.blending import round_corners
+    from cncc.passes.planning.geometry import PathRun
+    from cncc.passes.planning.segments import make_segments, split_at_stops
+
+    assert isinstance(run, PathRun)
+    if level >= 2 and rule is CornerRule.BLEND:
+        run = round_corners(run, limits, machine)
+    seg = make_segments(run, limits, machine)
+    if seg is None:
+        return []
+    _corner_caps(seg, limits, machine, level, rule)
+    return [_plan_part(part, machine, limits, level, rule, sink) for part in split_at_stops(seg)]
+
+
+def _corner_caps(seg: Segments, limits: AxisLimits, machine: MachineModel, level: int, rule: CornerRule) -> None:
+    """Fill ``seg.vvert`` (interior vertices) by the plan's corner rule."""
+    import numpy as np
+
+    from cncc.passes.planning.blending import velocity_step_caps
+    from cncc.passes.planning.segments import junction_deviation, speed_step
+
+    if seg.count < 2 or level == 0:
+        return
+    same_cmd = seg.cmd[1:] == seg.cmd[:-1]
+    if level == 1:
+        caps = junction_deviation(seg, limits, machine.junction_deviation_mm)
+        if rule is CornerRule.SPEED_STEP:
+            caps = speed_step(seg, limits)
+    else:
+        caps = velocity_step_caps(seg, limits, machine.interpolation_period_s)
+    if rule is CornerRule.EXACT_STOP:
+        caps = np.where(same_cmd, caps, 0.0)
+    seg.vvert[1:-1] = np.minimum(seg.vvert[1:-1], caps)
+
+
+def _plan_part(seg: Segments, machine: MachineModel, limits: AxisLimits, level: int, rule: CornerRule,
+               sink: DiagnosticSink) -> Rows:
+    import numpy as np
+
+    from cncc.ir.trajectory import Limit
+    from cncc.passes.planning.blending import reduce_accel
+    from cncc.passes.planning.emit import path_rows
+    from cncc.passes.planning.onedim import ruckig_move
+    from cncc.passes.planning.profile import Phases, boundary_speeds, trapezoids
+    from cncc.passes.planning.segments import take_off_speed
+
+    if level == 0:
+        t = seg.length / seg.vcap
+        ph = Phases(np.concatenate([[0.0], np.cumsum(t)[:-1]]), t, seg.s0[:-1], seg.vcap.copy(),
+                    np.zeros_like(t), np.zeros_like(t), seg.vlim.copy())
+        return path_rows(seg, ph)
+    if level == 1:
+        if rule is CornerRule.SPEED_STEP:
+            seg.vvert[0], seg.vvert[-1] = take_off_speed(seg, limits, machine)
+        x = boundary_speeds(seg.length, seg.vcap, seg.acap, seg.vvert**2)
+        return path_rows(seg, trapezoids(seg.length, seg.vcap, seg.acap, x, seg.vlim, int(Limit.ACCEL)))
+    seg.acap = reduce_accel(seg, limits, machine.interpolation_period_s)
+    if seg.count == 1:
+        ph = ruckig_move(float(seg.length[0]), float(seg.vcap[0]), float(seg.acap[0]), float(seg.jcap[0]),
+                         int(seg.vlim[0]))
+        return path_rows(seg, ph)
+    from cncc.passes.planning.fir import fir_profile
+
+    ph = fir_profile(seg)
+    if level >= 3:
+        from cncc.passes.planning.optimal import optimise
+
+        ph = optimise(seg, ph, sink)
+    return path_rows(seg, ph)
+
+
+@register
+@dataclass(frozen=True, kw_only=True)
+class Plan(Pass):
+    """Time-parameterise the motion; the Trajectory goes to ``ctx.options['trajectory']``.
+
+    Commands pass through unchanged (so later passes and backends still see them).
+    """
+
+    name: ClassVar[str] = "plan"
+    level: int = 2  # the -O level
+
+    def run(self, cmds: Iterable[Command], ctx: PassContext) -> Iterator[Command]:
+        from cncc.machines import load_machine
+
+        items = list(cmds)
+        machine = ctx.machine if ctx.machine is not None else load_machine("generic-mill")
+        ctx.options["trajectory"] = plan_commands(items, machine, self.level, ctx.sink)
+        ctx.options["plan_level"] = self.level
+        return iter(items)

@@ -1,0 +1,205 @@
+"""Commands -> runs: the path between two stops, as a polyline with per-piece data.
+
+Consumes IR commands in machine coordinates; produces a list of runs.  A run starts
+and ends at rest.  A run is either a :class:`PathRun` (lines, interpolated rapids and
+arcs as chords, in order) or an :class:`IndependentRapid` (a dog-leg G00 whose axes
+each move at their own rate).  Runs are cut where a command ends in exact stop
+(G09/G61/G60, ``rapid_ends_in_stop``), where a non-motion command forces a stop
+(:func:`cncc.passes.blend.forces_stop`) and around independent rapids.
+
+Arcs become chords whose sagitta is within ``min(arc_tolerance_mm, blend tolerance)``;
+for the jerk-limited levels the chords are also short enough that one chord takes
+about one interpolation period at the centripetal speed (see ``blending.py``).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from cncc import diagnostics as dg
+from cncc.diagnostics import DiagnosticSink
+from cncc.ir.commands import Arc, Command, Linear, PathMode, Rapid
+from cncc.ir.machine import MachineModel, RapidMode
+from cncc.ir.trajectory import FloatArray
+from cncc.passes.blend import forces_stop
+from cncc.passes.planning.limits import AxisLimits
+
+NORMAL_SHARE = 0.5
+"""Share of each axis' acceleration that velocity steps at chord vertices may use."""
+
+
+@dataclass
+class PathRun:
+    """A polyline run. ``k`` pieces, ``k + 1`` points; arrays are numpy."""
+
+    points: FloatArray  # (k+1, 6)
+    cmd: np.ndarray  # (k,) int64, index of the command of each piece
+    rapid: np.ndarray  # (k,) bool
+    feed_mm_s: FloatArray  # (k,) programmed path feed (inf for rapids)
+    tol_mm: FloatArray  # (k,) blend tolerance of the piece's command
+    arc_vertex: np.ndarray  # (k+1,) bool, vertex strictly inside one arc
+    stop_cmd: int = -1  # command whose stop ends the run (for reports)
+
+
+@dataclass
+class IndependentRapid:
+    start: FloatArray  # (6,)
+    end: FloatArray  # (6,)
+    cmd: int
+
+
+Run = PathRun | IndependentRapid
+
+
+@dataclass
+class _Builder:
+    points: list[FloatArray] = field(default_factory=list)  # chunks, each (q, 6) without its start
+    start: FloatArray | None = None
+    cmd: list[np.ndarray] = field(default_factory=list)
+    rapid: list[np.ndarray] = field(default_factory=list)
+    feed: list[FloatArray] = field(default_factory=list)
+    tol: list[FloatArray] = field(default_factory=list)
+    arcv: list[np.ndarray] = field(default_factory=list)  # per chunk: flags of its end points
+
+    def add(self, start: FloatArray, pts: FloatArray, cmd: int, rapid: bool, feed: float, tol: float) -> None:
+        if self.start is None:
+            self.start = start
+        q = pts.shape[0]
+        self.points.append(pts)
+        self.cmd.append(np.full(q, cmd, dtype=np.int64))
+        self.rapid.append(np.full(q, rapid))
+        self.feed.append(np.full(q, feed))
+        self.tol.append(np.full(q, tol))
+        flags = np.zeros(q, dtype=bool)
+        flags[:-1] = True
+        self.arcv.append(flags)
+
+    def finish(self) -> PathRun | None:
+        if self.start is None:
+            return None
+        pts = np.vstack([self.start[None, :], *self.points])
+        arcv = np.concatenate([[False], *self.arcv])
+        arcv[-1] = False
+        return PathRun(pts, np.concatenate(self.cmd), np.concatenate(self.rapid), np.concatenate(self.feed),
+                       np.concatenate(self.tol), arcv)
+
+
+def build_runs(cmds: Sequence[Command], machine: MachineModel, limits: AxisLimits, level: int,
+               sink: DiagnosticSink) -> list[Run]:
+    """Split the command list into runs (see the module docstring)."""
+    runs: list[Run] = []
+    b = _Builder()
+    warned: set[str] = set()
+
+    def close() -> None:
+        nonlocal b
+        run = b.finish()
+        if run is not None:
+            runs.append(run)
+        b = _Builder()
+
+    for index, cmd in enumerate(cmds):
+        match cmd:
+            case Rapid() | Linear() | Arc():
+                _check_axes(cmd, limits, sink, warned)
+                if isinstance(cmd, Rapid) and machine.rapid_mode is RapidMode.INDEPENDENT:
+                    close()
+                    runs.append(IndependentRapid(np.array(cmd.start, float), np.array(cmd.end, float), index))
+                    continue
+                _add_motion(b, cmd, index, machine, limits, level, sink, warned)
+                if cmd.motion.mode is PathMode.EXACT_STOP or (isinstance(cmd, Rapid) and machine.rapid_ends_in_stop):
+                    close()
+            case _:
+                if forces_stop(cmd, machine):
+                    close()
+    close()
+    return runs
+
+
+def _add_motion(b: _Builder, cmd: Rapid | Linear | Arc, index: int, machine: MachineModel, limits: AxisLimits,
+                level: int, sink: DiagnosticSink, warned: set[str]) -> None:
+    start = np.array(cmd.start, float)
+    tol = cmd.motion.blend_tolerance_mm
+    tol_mm = machine.blend_tolerance_mm if tol is None else max(tol, 0.0)
+    if isinstance(cmd, Rapid):
+        feed = math.inf
+    else:
+        feed = _feed_mm_s(cmd, machine, sink, warned)
+    if isinstance(cmd, Arc):
+        chord_max = math.inf
+        if level >= 2:
+            chord_max = _arc_chord_max(cmd, feed, machine, limits)
+        sag = min(machine.arc_tolerance_mm, tol_mm) if tol_mm > 0 else machine.arc_tolerance_mm
+        pts = arc_points(cmd, sag, chord_max)[1:]
+    else:
+        pts = np.array(cmd.end, float)[None, :]
+    b.add(start, pts, index, isinstance(cmd, Rapid), feed, tol_mm)
+
+
+def _feed_mm_s(cmd: Linear | Arc, machine: MachineModel, sink: DiagnosticSink, warned: set[str]) -> float:
+    feed = cmd.feed_mm_min
+    if not feed > 0:
+        sink.emit(dg.BAD_FEED, cmd.span, f"feed {feed:g} mm/min is not positive; using the machine default "
+                  f"{machine.default_feed_mm_min:g} mm/min")
+        feed = machine.default_feed_mm_min
+    if feed > machine.max_feed_mm_min and "feed" not in warned:
+        warned.add("feed")
+        sink.emit(dg.FEED_CLAMPED, cmd.span, f"feed {feed:g} mm/min is above the machine's cap "
+                  f"{machine.max_feed_mm_min:g} mm/min (clamped; reported once)")
+    return feed / 60.0
+
+
+def _check_axes(cmd: Rapid | Linear | Arc, limits: AxisLimits, sink: DiagnosticSink, warned: set[str]) -> None:
+    for i, (a, b) in enumerate(zip(cmd.start, cmd.end, strict=True)):
+        if not limits.present[i] and abs(a - b) > 1e-9 and f"axis{i}" not in warned:
+            warned.add(f"axis{i}")
+            sink.emit(dg.AXIS_NOT_ON_MACHINE, cmd.span,
+                      f"axis {'XYZABC'[i]} moves but the machine has no such axis (planned with the first axis' limits)")
+
+
+def _arc_chord_max(cmd: Arc, feed_mm_s: float, machine: MachineModel, limits: AxisLimits) -> float:
+    """Chord length that one interpolation period covers at the arc's speed limit."""
+    f, s = cmd.plane.first, cmd.plane.second
+    radius = math.hypot(cmd.start[f] - cmd.center[f], cmd.start[s] - cmd.center[s])
+    a_plane = float(min(limits.amax_mm_s2[f], limits.amax_mm_s2[s]))
+    v = min(feed_mm_s, math.sqrt(NORMAL_SHARE * a_plane * max(radius, 1e-9)))
+    return max(1.02 * v * machine.interpolation_period_s, 1e-4)
+
+
+def arc_points(cmd: Arc, sag_mm: float, chord_max_mm: float = math.inf) -> FloatArray:
+    """Points of the arc or helix from start to end (both included), shape ``(N+1, 6)``."""
+    f, s = cmd.plane.first, cmd.plane.second
+    start = np.array(cmd.start, float)
+    end = np.array(cmd.end, float)
+    cf, cs = cmd.center[f], cmd.center[s]
+    r0 = math.hypot(start[f] - cf, start[s] - cs)
+    r1 = math.hypot(end[f] - cf, end[s] - cs)
+    a0 = math.atan2(start[s] - cs, start[f] - cf)
+    a1 = math.atan2(end[s] - cs, end[f] - cf)
+    turns = cmd.turns if cmd.turns != 0 else 1
+    if turns > 0:
+        sweep = (a1 - a0) % (2 * math.pi)
+        sweep = sweep if sweep > 1e-9 else 2 * math.pi
+        sweep += 2 * math.pi * (turns - 1)
+    else:
+        sweep = -((a0 - a1) % (2 * math.pi))
+        sweep = sweep if sweep < -1e-9 else -2 * math.pi
+        sweep -= 2 * math.pi * (-turns - 1)
+    r = max(r0, r1, 1e-9)
+    dtheta = 2 * math.acos(max(1 - sag_mm / r, -1.0)) if sag_mm < r else math.pi / 2
+    other = float(np.linalg.norm(np.delete(end - start, [f, s])))
+    length = math.hypot(abs(sweep) * r, other)
+    n = max(1, math.ceil(abs(sweep) / max(dtheta, 1e-9)), math.ceil(length / chord_max_mm))
+    n = min(n, 2_000_000)
+    frac = np.linspace(0.0, 1.0, n + 1)
+    ang = a0 + sweep * frac
+    rad = r0 + (r1 - r0) * frac
+    pts = start[None, :] + (end - start)[None, :] * frac[:, None]
+    pts[:, f] = cf + rad * np.cos(ang)
+    pts[:, s] = cs + rad * np.sin(ang)
+    pts[-1] = end
+    return pts

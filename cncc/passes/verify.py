@@ -1,0 +1,294 @@
+"""The ``verify`` pass: an independent check that a Trajectory obeys the machine.
+
+API::
+
+    from cncc.passes.verify import verify_trajectory
+    report = verify_trajectory(traj, cmds, machine, sink, corner_rule=rule, check_dynamics=True)
+    report.count        # number of violations (each also emitted, first few per kind)
+
+It shares no code with the planners: it reads only the Trajectory arrays, the
+commands and the machine model, and checks each constant-jerk phase analytically.
+
+* E0616 continuity: phases contiguous in time and position.
+* E0610 velocity: per-axis ``|v|`` (endpoints and the stationary point of the
+  quadratic) against ``max_velocity`` (feed moves) or ``rapid`` (rapids) and the step
+  rate ``max_step_rate_hz / steps_per_mm``.
+* E0611 / E0612 acceleration / jerk within phases (``check_dynamics``).
+* E0617 corner: velocity steps between phases.  ``junction-deviation``: grbl's
+  junction speed for the step's angle; ``speed-step``: per-axis step <= the axis'
+  speed step (take-off speed from or to rest); ``blend`` / ``exact-stop``: the
+  controller spreads a step over one interpolation period ``T``, so the axis sees
+  ``a(t) + sum(steps in (t - T, t]) / T``, which must stay within ``max_accel``.
+* E0614 feed: path speed above the programmed (and machine-capped) feed.
+* E0613 path: positions farther than the blend tolerance (+ arc tolerance) from the
+  programmed path of the responsible command or its motion neighbours.
+* E0615 soft limits.
+Returns a :class:`VerifyReport`; the pass wrapper reads ``ctx.options['trajectory']``.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Iterator, Sequence
+from dataclasses import dataclass, field
+from typing import ClassVar
+
+import numpy as np
+
+from cncc import diagnostics as dg
+from cncc.diagnostics import DiagnosticSink
+from cncc.ir.commands import Arc, Command, Linear, Rapid
+from cncc.ir.frame import AXES
+from cncc.ir.machine import CornerRule, MachineModel, RapidMode
+from cncc.ir.trajectory import FloatArray, Trajectory
+from cncc.passes import Pass, PassContext, register
+from cncc.source import NO_SPAN
+
+REL = 1e-6  # relative slack on every limit (floating point)
+MAX_REPORTS = 5  # diagnostics per kind; the rest are counted
+
+
+@dataclass
+class VerifyReport:
+    counts: dict[str, int] = field(default_factory=dict)
+
+    @property
+    def count(self) -> int:
+        return sum(self.counts.values())
+
+    def add(self, code: str, n: int) -> None:
+        if n:
+            self.counts[code] = self.counts.get(code, 0) + n
+
+
+@dataclass
+class _Cmds:
+    """Per-command data as arrays indexed like ``cmds``."""
+
+    rapid: np.ndarray
+    feed_mm_s: FloatArray
+    tol_mm: FloatArray
+    motion: np.ndarray
+
+
+def _limits(machine: MachineModel) -> dict[str, FloatArray]:
+    by = {a.name: a for a in machine.axes}
+    axes = [by.get(n, machine.axes[0]) for n in AXES]
+    step = np.array([a.step.max_step_rate_hz * max(a.step.gear_cmd, 1) / (a.step.steps_per_mm * a.step.gear_cmr)
+                     for a in axes])
+    return {
+        "v": np.minimum(np.array([a.max_velocity_mm_min / 60 for a in axes]), step),
+        "rapid": np.minimum(np.array([a.rapid_mm_min / 60 for a in axes]), step),
+        "a": np.array([a.max_accel_mm_s2 for a in axes]),
+        "j": np.array([a.max_jerk_mm_s3 for a in axes]),
+        "step": np.array([a.max_speed_step_mm_min / 60 for a in axes]),
+        "start": np.array([a.start_speed_mm_min / 60 for a in axes]),
+        "lo": np.array([-np.inf if a.soft_min_mm is None else a.soft_min_mm for a in axes]),
+        "hi": np.array([np.inf if a.soft_max_mm is None else a.soft_max_mm for a in axes]),
+    }
+
+
+def _cmd_table(cmds: Sequence[Command], machine: MachineModel) -> _Cmds:
+    n = len(cmds)
+    rapid, motion = np.zeros(n, bool), np.zeros(n, bool)
+    feed, tol = np.full(n, np.inf), np.full(n, machine.blend_tolerance_mm)
+    for i, c in enumerate(cmds):
+        if isinstance(c, Rapid | Linear | Arc):
+            motion[i] = True
+            rapid[i] = isinstance(c, Rapid)
+            if not isinstance(c, Rapid):
+                feed[i] = min(c.feed_mm_min if c.feed_mm_min > 0 else machine.default_feed_mm_min,
+                              machine.max_feed_mm_min) / 60
+            if c.motion.blend_tolerance_mm is not None:
+                tol[i] = c.motion.blend_tolerance_mm
+    return _Cmds(rapid, feed, tol, motion)
+
+
+def verify_trajectory(traj: Trajectory, cmds: Sequence[Command], machine: MachineModel, sink: DiagnosticSink,
+                      *, corner_rule: CornerRule | None = None, check_dynamics: bool = True) -> VerifyReport:
+    """Check ``traj`` (planned from ``cmds``) against ``machine``; see the module docstring."""
+    report = VerifyReport()
+    if traj.phase_count == 0:
+        return report
+    lim = _limits(machine)
+    table = _cmd_table(cmds, machine)
+    rule = corner_rule if corner_rule is not None else machine.corner_rule
+    ci = np.clip(traj.cmd_index, 0, max(len(cmds) - 1, 0))
+
+    def emit(code: str, bad: np.ndarray, what: str) -> None:
+        idx = np.flatnonzero(bad)
+        report.add(code, idx.size)
+        for k in idx[:MAX_REPORTS]:
+            span = cmds[int(ci[k])].span if len(cmds) else NO_SPAN
+            sink.emit(code, span, f"{what} (phase {int(k)}, t = {traj.t0_s[k]:.6f} s)")
+        if idx.size > MAX_REPORTS:
+            sink.emit(code, NO_SPAN, f"{idx.size - MAX_REPORTS} more of: {what}")
+
+    d = traj.duration_s[:, None]
+    v0, a0, j = traj.v0_mm_s, traj.a0_mm_s2, traj.j_mm_s3
+    p_end = traj.p0_mm + v0 * d + a0 * d**2 / 2 + j * d**3 / 6
+    v_end = v0 + a0 * d + j * d**2 / 2
+    a_end = a0 + j * d
+    _continuity(traj, p_end, emit)
+    vmax = np.where(table.rapid[ci][:, None], lim["rapid"][None, :], lim["v"][None, :])
+    peak = _abs_peak_v(v0, a0, j, traj.duration_s, v_end)
+    bad_v = (peak > vmax * (1 + REL) + 1e-9).any(axis=1)
+    emit(dg.VERIFY_VELOCITY, bad_v, "an axis velocity exceeds its limit")
+    if check_dynamics:
+        amax = lim["a"][None, :] * (1 + REL) + 1e-9
+        emit(dg.VERIFY_ACCEL, ((np.abs(a0) > amax) | (np.abs(a_end) > amax)).any(axis=1),
+             "an axis acceleration exceeds its limit")
+        emit(dg.VERIFY_JERK, (np.abs(j) > lim["j"][None, :] * (1 + REL) + 1e-9).any(axis=1),
+             "an axis jerk exceeds its limit")
+        bad_c = _corners(traj, v_end, a_end, lim, rule, machine)
+        emit(dg.VERIFY_CORNER, bad_c, f"a velocity step exceeds the corner rule '{rule.value}'")
+    speed = np.maximum(np.linalg.norm(v0, axis=1), np.linalg.norm(v_end, axis=1))
+    speed = np.maximum(speed, np.linalg.norm(_v_at(v0, a0, j, traj.duration_s / 2), axis=1))
+    emit(dg.VERIFY_FEED, speed > table.feed_mm_s[ci] * (1 + REL) + 1e-9, "the path speed exceeds the programmed feed")
+    independent = table.rapid[ci] & (machine.rapid_mode is RapidMode.INDEPENDENT)
+    dev = _deviation(traj, p_end, cmds, table, ci)
+    allowed = table.tol_mm[ci] + machine.arc_tolerance_mm + 1e-6
+    emit(dg.VERIFY_PATH, (dev > allowed) & ~independent, "the trajectory leaves the programmed path")
+    lo, hi = _extent(traj.p0_mm, p_end, v0, a0, j, traj.duration_s)
+    emit(dg.VERIFY_SOFT_LIMIT, ((lo < lim["lo"] - 1e-6) | (hi > lim["hi"] + 1e-6)).any(axis=1),
+         "an axis leaves its soft limits")
+    return report
+
+
+def _v_at(v0: FloatArray, a0: FloatArray, j: FloatArray, tau: FloatArray) -> FloatArray:
+    t = tau[:, None]
+    out: FloatArray = v0 + a0 * t + j * t * t / 2
+    return out
+
+
+def _abs_peak_v(v0: FloatArray, a0: FloatArray, j: FloatArray, dur: FloatArray, v_end: FloatArray) -> FloatArray:
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ts = np.where(j != 0, -a0 / j, 0.0)
+    inside = (ts > 0) & (ts < dur[:, None])
+    vs = v0 + a0 * ts + j * ts * ts / 2
+    out: FloatArray = np.maximum(np.maximum(np.abs(v0), np.abs(v_end)), np.where(inside, np.abs(vs), 0.0))
+    return out
+
+
+def _continuity(traj: Trajectory, p_end: FloatArray, emit: object) -> None:
+    t_end = traj.t0_s + traj.duration_s
+    bad = np.zeros(traj.phase_count, bool)
+    bad[1:] = (np.abs(traj.t0_s[1:] - t_end[:-1]) > 1e-9) | (np.abs(traj.p0_mm[1:] - p_end[:-1]) > 1e-6).any(axis=1)
+    bad |= traj.duration_s < 0
+    emit(dg.VERIFY_CONTINUITY, bad, "the trajectory jumps in time or position")  # type: ignore[operator]
+
+
+def _corners(traj: Trajectory, v_end: FloatArray, a_end: FloatArray, lim: dict[str, FloatArray],
+             rule: CornerRule, machine: MachineModel) -> np.ndarray:
+    """Phase k is flagged when the velocity step at its start breaks the rule."""
+    n, m = traj.v0_mm_s.shape
+    before = np.vstack([np.zeros((1, m)), v_end])  # velocity before each boundary (rest at the ends)
+    after = np.vstack([traj.v0_mm_s, np.zeros((1, m))])
+    step = after - before  # (n+1, m)
+    period = machine.interpolation_period_s
+    small = (np.abs(step) <= lim["a"] * period * (1 + REL) + 1e-9).all(axis=1)
+    if rule is CornerRule.JUNCTION_DEVIATION:
+        ok = small | _jd_ok(before, after, lim["a"], machine.junction_deviation_mm)
+    elif rule is CornerRule.SPEED_STEP:
+        at_rest = (np.linalg.norm(before, axis=1) < 1e-9) | (np.linalg.norm(after, axis=1) < 1e-9)
+        allow = np.where(at_rest[:, None], np.maximum(lim["step"], lim["start"]), lim["step"])
+        ok = small | (np.abs(step) <= allow * (1 + REL) + 1e-9).all(axis=1)
+    else:
+        return _smeared(traj, step, a_end, lim["a"], period)[:n]
+    bad = ~ok
+    bad[n - 1] |= bad[n]
+    out: np.ndarray = bad[:n]
+    return out
+
+
+def _jd_ok(before: FloatArray, after: FloatArray, amax: FloatArray, dev_mm: float) -> np.ndarray:
+    sb, sa = np.linalg.norm(before, axis=1), np.linalg.norm(after, axis=1)
+    ub = before / np.maximum(sb, 1e-300)[:, None]
+    ua = after / np.maximum(sa, 1e-300)[:, None]
+    cos_t = -np.einsum("ij,ij->i", ub, ua)
+    jv = ua - ub
+    jv /= np.maximum(np.linalg.norm(jv, axis=1), 1e-300)[:, None]
+    with np.errstate(divide="ignore"):
+        acc = np.where(np.abs(jv) > 1e-12, amax / np.maximum(np.abs(jv), 1e-300), np.inf).min(axis=1)
+    sh = np.sqrt(np.clip(0.5 * (1 - cos_t), 0, 1))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        vj = np.sqrt(np.maximum(acc * dev_mm * sh / (1 - sh), 0))
+    vj = np.where(cos_t < -0.999999, np.inf, vj)
+    same_speed = np.abs(sb - sa) <= 1e-6 * np.maximum(sb, 1.0)
+    ok: np.ndarray = same_speed & (np.maximum(sb, sa) <= vj * (1 + REL) + 1e-9)
+    return ok
+
+
+def _smeared(traj: Trajectory, step: FloatArray, a_end: FloatArray, amax: FloatArray, period: float) -> np.ndarray:
+    """``|a(t) + sum(steps in (t - T, t]) / T| <= amax`` at every event time."""
+    n = traj.phase_count
+    t_b = np.concatenate([traj.t0_s, [traj.t0_s[-1] + traj.duration_s[-1]]])
+    cum = np.vstack([np.zeros((1, step.shape[1])), np.cumsum(step, axis=0)])
+
+    def box(t: FloatArray, include_t: bool) -> FloatArray:
+        hi = np.searchsorted(t_b, t, side="right" if include_t else "left")
+        lo = np.searchsorted(t_b, t - period, side="right")
+        out: FloatArray = (cum[hi] - cum[lo]) / period
+        return out
+
+    start_ok = np.abs(traj.a0_mm_s2 + box(t_b[:-1], True)) <= amax * (1 + REL) + 1e-6
+    end_ok = np.abs(a_end + box(t_b[1:], False)) <= amax * (1 + REL) + 1e-6
+    bad = ~(start_ok.all(axis=1) & end_ok.all(axis=1))
+    t_box = t_b + period  # the smear of each step ends here
+    k = np.clip(np.searchsorted(traj.t0_s, t_box, side="left") - 1, 0, n - 1)
+    tau = np.clip(t_box - traj.t0_s[k], 0, traj.duration_s[k])[:, None]
+    a_at = traj.a0_mm_s2[k] + traj.j_mm_s3[k] * tau
+    inside = (t_box < t_b[-1])[:, None]
+    box_ok = np.abs(np.where(inside, a_at, 0.0) + box(t_box, True)) <= amax * (1 + REL) + 1e-6
+    bad_box = ~box_ok.all(axis=1)
+    np.logical_or.at(bad, k, bad_box)
+    return bad
+
+
+def _extent(p0: FloatArray, p_end: FloatArray, v0: FloatArray, a0: FloatArray, j: FloatArray, dur: FloatArray
+            ) -> tuple[FloatArray, FloatArray]:
+    lo, hi = np.minimum(p0, p_end), np.maximum(p0, p_end)
+    disc = a0 * a0 - 2 * j * v0
+    for sign in (-1.0, 1.0):
+        with np.errstate(divide="ignore", invalid="ignore"):
+            root = np.where(j != 0, (-a0 + sign * np.sqrt(np.maximum(disc, 0))) / j,
+                            np.where(a0 != 0, -v0 / a0, -1.0))
+        ok = (root > 0) & (root < dur[:, None]) & (disc >= 0)
+        p = p0 + v0 * root + a0 * root**2 / 2 + j * root**3 / 6
+        lo = np.where(ok, np.minimum(lo, p), lo)
+        hi = np.where(ok, np.maximum(hi, p), hi)
+    return lo, hi
+
+
+def _deviation(traj: Trajectory, p_end: FloatArray, cmds: Sequence[Command], table: _Cmds, ci: np.ndarray
+               ) -> FloatArray:
+    """Distance of each phase's start, middle and end to the programmed path nearby."""
+    from cncc.passes.verify_geometry import distance_to_commands
+
+    d = traj.duration_s[:, None] / 2
+    mid = traj.p0_mm + traj.v0_mm_s * d + traj.a0_mm_s2 * d**2 / 2 + traj.j_mm_s3 * d**3 / 6
+    dist = np.zeros(traj.phase_count)
+    for pts in (traj.p0_mm, mid, p_end):
+        dist = np.maximum(dist, distance_to_commands(pts, ci, cmds, table.motion))
+    return dist
+
+
+@register
+@dataclass(frozen=True, kw_only=True)
+class Verify(Pass):
+    """Check ``ctx.options['trajectory']`` (left there by ``plan``) against the machine."""
+
+    name: ClassVar[str] = "verify"
+    check_dynamics: bool = True
+
+    def run(self, cmds: Iterable[Command], ctx: PassContext) -> Iterator[Command]:
+        items = list(cmds)
+        traj = ctx.options.get("trajectory")
+        if isinstance(traj, Trajectory) and ctx.machine is not None:
+            from cncc.machines import effective_corner_rule
+
+            level = int(ctx.options.get("plan_level", 2))
+            report = verify_trajectory(traj, items, ctx.machine, ctx.sink,
+                                       corner_rule=effective_corner_rule(ctx.machine, level),
+                                       check_dynamics=self.check_dynamics and level > 0)
+            ctx.options["verify_report"] = report
+        return iter(items)
