@@ -124,6 +124,10 @@ BAD_PITCH_TABLE = _define("E0704", E, "a pitch-error table would make the axis m
 DIR_SETUP_DELAY = _define("W0705", W, "a step was delayed to respect the direction set-up time")
 AXIS_NOT_IN_MACHINE = _define("W0706", W, "a trajectory axis is not in the machine model; default step output used")
 
+# --- language server (cncc/lsp): target checks and the analysis budget ----------
+TARGET_UNSUPPORTED = _define("W0890", W, "a code the target dialect has no counterpart for")
+ANALYSIS_STOPPED = _define("N0990", N, "the editor stopped analysing a document at its time budget")
+
 # --- E09xx: driver and files --------------------------------------------------
 CANNOT_READ = _define("E0901", E, "an input file cannot be read")
 CANNOT_WRITE = _define("E0902", E, "an output file cannot be written")

@@ -1,0 +1,114 @@
+"""Code actions as text edits: insert a feed, repair an arc centre, convert a selection.
+
+Each function returns ``(title, edits)`` with edits as ``(start, end, new_text)``
+character offsets; the server turns them into a ``WorkspaceEdit``.
+
+* **Insert a feed** where a feed move has no F (E0211) or runs on the dialect's
+  default feed (N0212): the last F programmed above, else the dialect default.
+* **Repair an arc centre** (E0208): the arc-check pass's repair (centre moved onto
+  the chord's bisector keeping the start radius) written back as I/J/K words.
+* **Convert a selection** to another dialect: the compiled commands of the selected
+  blocks, emitted by the G-code backend for that dialect.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+from cncc.dialects import Dialect
+from cncc.ir import Arc, Command, Plane
+from cncc.lsp.positions import LineIndex
+from cncc.lsp.scan import Comments, code_part, tokens
+
+Edit = tuple[int, int, str]
+CENTER_LETTERS = {Plane.XY: ("I", "J"), Plane.ZX: ("K", "I"), Plane.YZ: ("J", "K")}
+
+
+def number_text(value: float, decimals: int = 4) -> str:
+    """A number always written with a decimal point (so no least-input-unit reading)."""
+    text = f"{value:.{decimals}f}".rstrip("0")
+    if text in ("-0.", "-0"):
+        text = "0."
+    return text
+
+
+def block_end_offset(index: LineIndex, dialect: Dialect, line: int) -> int:
+    """Where a new word goes: right after the last word of the line's block."""
+    base = index.line_start(line)
+    text = index.line_text(line)
+    last = None
+    for tok in tokens(text, base, Comments.of(dialect)):
+        last = tok
+    if last is not None:
+        return last.end
+    pieces = code_part(text, Comments.of(dialect))
+    end = pieces[0][1] if pieces else 0
+    return base + len(text[:end].rstrip(" \t;"))
+
+
+def insert_feed(index: LineIndex, dialect: Dialect, offset: int) -> tuple[str, list[Edit]]:
+    line = index.line_of(offset)
+    comments = Comments.of(dialect)
+    feed: str | None = None
+    for ln in range(line - 1, max(-1, line - 20_000), -1):
+        text = index.line_text(ln)
+        if "F" not in text and "f" not in text:
+            continue
+        found = [t for t in tokens(text, 0, comments) if t.kind == "word" and t.text == "F" and t.value]
+        if found:
+            feed = found[-1].value
+            break
+    if feed is None:
+        feed = f"{dialect.default_feed_mm_min:g}"
+    at = block_end_offset(index, dialect, line)
+    return f"Insert feed F{feed}", [(at, at, f" F{feed}")]
+
+
+def repair_arc(index: LineIndex, dialect: Dialect, arc: Arc) -> tuple[str, list[Edit]] | None:
+    """Rewrite the centre words of ``arc``'s block to the repaired centre."""
+    plane = arc.plane
+    if plane not in CENTER_LETTERS:
+        return None
+    letters = CENTER_LETTERS[plane]
+    scale = arc.frame.units.mm_per_unit
+    values = ((arc.center[plane.first] - arc.start[plane.first]) / scale,
+              (arc.center[plane.second] - arc.start[plane.second]) / scale)
+    line = index.line_of(arc.span.start)
+    base = index.line_start(line)
+    toks = [t for t in tokens(index.line_text(line), base, Comments.of(dialect))
+            if t.kind == "word" and arc.span.start <= t.start < max(arc.span.end, t.start + 1)]
+    if any(t.text == "R" for t in toks):
+        return None
+    edits: list[Edit] = []
+    missing = []
+    for letter, value in zip(letters, values, strict=True):
+        word = next((t for t in toks if t.text == letter), None)
+        new = f"{letter}{number_text(value)}"
+        if word is not None:
+            edits.append((word.start, word.end, new))
+        else:
+            missing.append(new)
+    if missing:
+        at = block_end_offset(index, dialect, line)
+        feed = next((t for t in toks if t.text == "F"), None)
+        if feed is not None:
+            at = feed.start
+            edits.append((at, at, " ".join(missing) + " "))
+        else:
+            edits.append((at, at, " " + " ".join(missing)))
+    shown = " ".join(f"{a}{number_text(v)}" for a, v in zip(letters, values, strict=True))
+    return f"Repair arc centre ({shown})", edits
+
+
+def convert_selection(index: LineIndex, commands: Sequence[Command], first_line: int, last_line: int,
+                      target: Dialect) -> tuple[str, list[Edit]] | None:
+    """Replace whole lines ``first_line..last_line`` by their commands emitted for ``target``."""
+    from cncc.backends.gcode import emit_gcode
+
+    lo = index.line_start(first_line)
+    hi = index.line_end(last_line)
+    chosen = [c for c in commands if lo <= c.span.start < hi or (c.span.start <= lo < c.span.end)]
+    if not chosen:
+        return None
+    text = "".join(emit_gcode(chosen, target)).rstrip("\n")
+    return f"Convert selection to {target.name} ({target.title})", [(lo, hi, text)]

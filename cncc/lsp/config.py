@@ -1,0 +1,155 @@
+"""Server settings: ``cncc.toml`` in the workspace, initialization options, guesses.
+
+Precedence, lowest first: built-in defaults, the ``cncc.toml`` found by walking up
+from the document's folder (stopping at the workspace root), the client's
+initialization options / ``workspace/didChangeConfiguration`` settings.  The dialect
+of a document is then: a modeline in its first lines (``(cncc: dialect=szgh)``), the
+configured dialect, a guess from the content, a guess from the file extension,
+and finally the driver's default.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+import tomllib
+from dataclasses import dataclass, field, fields, replace
+from typing import Any
+
+from cncc.dialects import Dialect, DialectError, available, load_dialect, parse_dialect
+
+CONFIG_NAME = "cncc.toml"
+DEFAULT_DIALECT = "syntec"
+
+
+@dataclass(frozen=True, slots=True)
+class Settings:
+    dialect: str | None = None  # a built-in dialect name or a path to a dialect TOML
+    target: str | None = None  # dialect the program is meant to run on (unsupported-code checks)
+    machine: str | None = None
+    offsets: str | None = None  # work offsets table (TOML)
+    tools: str | None = None  # tool table
+    opt_level: int = 0  # planner level of the inlay hints
+    dialect_options: dict[str, Any] = field(default_factory=dict)
+    debounce_ms: int = 60
+    budget_s: float = 4.0  # an analysis that takes longer is stopped (partial results kept)
+    inlay_hints: bool = True
+    max_diagnostics: int = 1000
+    root: str = ""  # folder that relative paths are resolved against
+
+    def merged(self, data: dict[str, Any], root: str | None = None) -> Settings:
+        """A copy with the known keys of ``data`` applied (unknown keys ignored)."""
+        changes: dict[str, Any] = {}
+        flat = dict(data)
+        for section in ("cncc", "lsp"):
+            sub = flat.pop(section, None)
+            if isinstance(sub, dict):
+                flat.update(sub)
+        if isinstance(flat.get("options"), dict):
+            flat["dialect_options"] = {**self.dialect_options, **flat.pop("options")}
+        for f in fields(self):
+            key = f.name
+            alias = key.replace("_", "-")
+            if key in flat or alias in flat:
+                value = flat[key] if key in flat else flat[alias]
+                coerced = _coerce(key, value, getattr(self, key))
+                if coerced is not None or value is None:
+                    changes[key] = coerced
+        if root is not None:
+            changes["root"] = root
+        return replace(self, **changes)
+
+    def path(self, value: str | None) -> str | None:
+        if not value:
+            return None
+        value = os.path.expanduser(value)
+        return value if os.path.isabs(value) or not self.root else os.path.join(self.root, value)
+
+
+def _coerce(key: str, value: Any, current: Any) -> Any:
+    if value is None:
+        return None
+    if isinstance(current, bool):
+        return bool(value)
+    if isinstance(current, int) and not isinstance(current, bool):
+        return int(value) if isinstance(value, int | float | str) and str(value).lstrip("-").isdigit() else current
+    if isinstance(current, float):
+        return float(value) if isinstance(value, int | float) else current
+    if isinstance(current, dict):
+        return dict(value) if isinstance(value, dict) else current
+    return str(value)
+
+
+def find_config(folder: str, stop_at: str | None = None) -> str | None:
+    """The nearest ``cncc.toml`` at or above ``folder`` (not above ``stop_at``)."""
+    folder = os.path.abspath(folder)
+    stop = os.path.abspath(stop_at) if stop_at else None
+    while True:
+        candidate = os.path.join(folder, CONFIG_NAME)
+        if os.path.isfile(candidate):
+            return candidate
+        parent = os.path.dirname(folder)
+        if parent == folder or (stop is not None and folder == stop):
+            return None
+        folder = parent
+
+
+def read_config(path: str) -> tuple[dict[str, Any], str | None]:
+    """The table in ``path`` and an error message (empty table when unreadable)."""
+    try:
+        with open(path, "rb") as fh:
+            return tomllib.load(fh), None
+    except (OSError, tomllib.TOMLDecodeError) as exc:
+        return {}, f"{path}: {exc}"
+
+
+# ---- dialects --------------------------------------------------------------------
+_MODELINE_RE = re.compile(r"cncc\s*:\s*dialect\s*=\s*([\w./-]+)", re.IGNORECASE)
+_CONTENT_HINTS: tuple[tuple[str, re.Pattern[str]], ...] = (
+    ("szgh", re.compile(r"^\s*(?:N\d+\s*)?(?:WAT\b|FILEON|PP[A-Z]|M98\s*P[A-Za-z])", re.MULTILINE)),
+    ("linuxcnc", re.compile(r"^\s*O<\w+>|#<\w+>|^\s*o\d+\s+(?:sub|call|if|while)\b", re.MULTILINE | re.IGNORECASE)),
+    ("grbl", re.compile(r"^\s*\$(?:H|X|J=|\d+=)", re.MULTILINE)),
+    ("series8", re.compile(r"^\s*N\d{3,4}\s*G0?[0-3](?:\s*[XYZIJ]\d+)+\s*$", re.MULTILINE)),
+)
+
+
+def guess_dialect(path: str, text: str, configured: str | None) -> str:
+    """The dialect of one document (see the module docstring for the order)."""
+    known = available()
+    head = text[:2000]
+    m = _MODELINE_RE.search(head)
+    if m is not None:
+        return m.group(1)
+    if configured:
+        return configured
+    sample = text[:200_000]
+    for name, pattern in _CONTENT_HINTS:
+        if name in known and pattern.search(sample):
+            return name
+    ext = os.path.splitext(path)[1].lower()
+    matches = [name for name in known if ext and ext in _extensions(name)]
+    if len(matches) == 1 or (matches and DEFAULT_DIALECT not in matches):
+        return matches[0]
+    return DEFAULT_DIALECT
+
+
+def _extensions(name: str) -> tuple[str, ...]:
+    try:
+        return load_dialect(name).extensions
+    except DialectError:
+        return ()
+
+
+def open_dialect(name: str, settings: Settings) -> Dialect:
+    """A built-in dialect by name, or a dialect TOML file by path; options applied."""
+    if name.endswith(".toml"):
+        path = settings.path(name) or name
+        try:
+            with open(path, "rb") as fh:
+                dialect = parse_dialect(tomllib.load(fh))
+        except (OSError, tomllib.TOMLDecodeError) as exc:
+            raise DialectError(f"{path}: {exc}") from None
+    else:
+        dialect = load_dialect(name)
+    opts = {k: v for k, v in settings.dialect_options.items() if k in dialect.options}
+    return dialect.with_options(opts) if opts else dialect

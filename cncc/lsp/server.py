@@ -1,0 +1,184 @@
+"""The language server: pygls wiring, document state, debounced analyses.
+
+Every open document has a :class:`DocState`.  An edit schedules an analysis after a
+short pause (``debounce_ms``); a newer edit cancels the pending one and stops a
+running one.  Analyses run in guarded threads (:mod:`cncc.lsp.guard`) so the event
+loop keeps answering requests while the compiler works, and an analysis that runs
+past its budget is stopped with its partial results published.  Requests read the
+latest analysis; lexical features (hover, completion, go-to) read the text itself.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import contextlib
+import os
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import Any, TypeVar
+from urllib.parse import unquote, urlparse
+
+from lsprotocol import types as lsp
+from pygls.lsp.server import LanguageServer
+
+from cncc import __version__
+from cncc import diagnostics as dg
+from cncc.dialects import Dialect, DialectError
+from cncc.lsp import convert
+from cncc.lsp.analysis import Analysis, Request, analyze, new_analysis
+from cncc.lsp.config import Settings, find_config, guess_dialect, open_dialect, read_config
+from cncc.lsp.guard import Job
+from cncc.lsp.positions import LineIndex
+from cncc.source import Span
+
+T = TypeVar("T")
+
+
+@dataclass(slots=True)
+class DocState:
+    uri: str
+    version: int | None = None
+    analysis: Analysis | None = None
+    job: Job | None = None
+    pending: asyncio.Task[None] | None = None
+    ready: asyncio.Event = field(default_factory=asyncio.Event)
+    config_error: str | None = None
+
+
+class CnccServer(LanguageServer):
+    def __init__(self) -> None:
+        super().__init__("cncc", __version__, text_document_sync_kind=lsp.TextDocumentSyncKind.Incremental)
+        self.settings = Settings()
+        self.client_settings: dict[str, Any] = {}
+        self.docs: dict[str, DocState] = {}
+        self.root: str | None = None
+
+    # ---- settings and dialects
+    def doc_path(self, uri: str) -> str:
+        parsed = urlparse(uri)
+        return unquote(parsed.path) if parsed.scheme == "file" else ""
+
+    def settings_for(self, uri: str) -> tuple[Settings, str | None]:
+        path = self.doc_path(uri)
+        settings = Settings(root=self.root or "")
+        error = None
+        if path:
+            found = find_config(os.path.dirname(path), self.root)
+            if found is not None:
+                data, error = read_config(found)
+                settings = settings.merged(data, root=os.path.dirname(found))
+        if self.client_settings:
+            settings = settings.merged(self.client_settings)
+        return settings, error
+
+    def dialect_name(self, uri: str, text: str, settings: Settings) -> str:
+        return guess_dialect(self.doc_path(uri) or uri, text, settings.dialect)
+
+    def dialect_of(self, uri: str, text: str) -> Dialect:
+        settings, _ = self.settings_for(uri)
+        try:
+            return open_dialect(self.dialect_name(uri, text, settings), settings)
+        except DialectError:
+            from cncc.lsp.config import DEFAULT_DIALECT
+
+            return open_dialect(DEFAULT_DIALECT, Settings())
+
+    # ---- analyses
+    def state(self, uri: str) -> DocState:
+        st = self.docs.get(uri)
+        if st is None:
+            st = self.docs[uri] = DocState(uri)
+        return st
+
+    def schedule(self, uri: str, version: int | None) -> None:
+        st = self.state(uri)
+        st.version = version
+        st.ready.clear()
+        if st.pending is not None and not st.pending.done():
+            st.pending.cancel()
+        if st.job is not None:
+            st.job.cancel()
+        st.pending = asyncio.ensure_future(self._debounced(uri))
+
+    async def _debounced(self, uri: str) -> None:
+        settings, error = self.settings_for(uri)
+        await asyncio.sleep(settings.debounce_ms / 1000.0)
+        doc = self.workspace.get_text_document(uri)
+        text = doc.source
+        st = self.state(uri)
+        req = Request(uri, self.doc_path(uri), st.version, text, self.dialect_name(uri, text, settings), settings)
+        a = new_analysis(req)
+        a.index.encoding = _encoding(self)
+        job = Job(lambda check: analyze(a, check), settings.budget_s)
+        st.job = job.start()
+        try:
+            reason = await asyncio.wrap_future(job.future)
+        except asyncio.CancelledError:
+            job.cancel()
+            raise
+        except Exception as exc:  # a compiler bug: say so in the document, keep serving
+            a.diagnostics = [dg.Diagnostic(dg.BAD_OPTION, dg.Severity.ERROR, Span(0, 0, 0),
+                                           f"cncc internal error while analysing: {type(exc).__name__}: {exc}")]
+            reason = None
+        if st.job is job:
+            st.job = None
+        if reason == "cancelled" or st.version != req.version:
+            return
+        a.stopped = reason
+        if error:
+            a.diagnostics.append(dg.Diagnostic(dg.BAD_OPTION, dg.Severity.WARNING, Span(0, 0, 0), error))
+        st.analysis = a
+        st.ready.set()
+        self.publish(a)
+
+    def publish(self, a: Analysis) -> None:
+        settings = a.request.settings
+        items = convert.diagnostics(a.index, a.request.uri, a.diagnostics, settings.max_diagnostics)
+        if a.stopped:
+            line = a.index.line_of(a.reached)
+            items.append(convert.diagnostic(a.index, a.request.uri, dg.Diagnostic(
+                dg.ANALYSIS_STOPPED, dg.Severity.NOTE, Span(0, a.reached, a.reached),
+                f"analysis stopped after {settings.budget_s:g} s at line {line + 1} ({a.stopped}); "
+                "the lines below were not checked")))
+        self.text_document_publish_diagnostics(
+            lsp.PublishDiagnosticsParams(uri=a.request.uri, diagnostics=items, version=a.request.version))
+        caps = self.client_capabilities.workspace
+        if caps is not None and caps.inlay_hint is not None and caps.inlay_hint.refresh_support:
+            self.workspace_inlay_hint_refresh(None)
+
+    async def current(self, uri: str, wait_s: float = 5.0) -> Analysis | None:
+        """The analysis of the document's current version (waiting for it a while)."""
+        st = self.docs.get(uri)
+        if st is None:
+            return None
+        if not st.ready.is_set():
+            with contextlib.suppress(TimeoutError):
+                await asyncio.wait_for(st.ready.wait(), wait_s)
+        return st.analysis
+
+    async def guarded(self, work: Callable[[Callable[[], None]], T], budget_s: float) -> T | None:
+        """Run ``work(check)`` in a guarded thread; None if it was stopped."""
+        box: list[T] = []
+        job = Job(lambda check: box.append(work(check)), budget_s).start()
+        reason = await asyncio.wrap_future(job.future)
+        return box[0] if box and reason is None else None
+
+    def text_and_index(self, uri: str) -> tuple[str, LineIndex]:
+        text = self.workspace.get_text_document(uri).source
+        return text, LineIndex(text, _encoding(self))
+
+
+def _encoding(server: LanguageServer) -> str:
+    try:
+        enc = server.workspace.position_encoding
+    except RuntimeError:
+        return "utf-16"
+    return str(enc or "utf-16").lower().replace("utf16", "utf-16").replace("utf8", "utf-8").replace("utf32", "utf-32")
+
+
+def build() -> CnccServer:
+    from cncc.lsp import features
+
+    server = CnccServer()
+    features.register(server)
+    return server
