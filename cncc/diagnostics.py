@@ -98,6 +98,33 @@ CYCLE_UNKNOWN = _define("E0415", E, "the dialect names a cycle kind cncc does no
 CYCLE_WORDS_NOT_STORED = _define("W0416", W, "cycle data in a block that does not drill is not stored")
 CYCLE_LONG_DWELL = _define("W0417", W, "a cycle dwell longer than a minute (is P in the right unit?)")
 
+# --- E03xx: macros, variables and subprograms (cncc/frontend/macro) ----------------
+MACRO_STEP_BUDGET = _define("E0301", E, "the program ran past the step budget (an endless loop or recursion?)")
+MACRO_BAD_VARIABLE = _define("E0302", E, "a variable number that the macro language does not have")
+MACRO_READ_ONLY = _define("E0303", E, "an assignment to a variable that cannot be written")
+MACRO_DIV_ZERO = _define("E0304", E, "a division by zero in a macro expression")
+MACRO_DOMAIN = _define("E0305", E, "a macro function called outside its domain (SQRT of a negative ...)")
+MACRO_NO_LABEL = _define("E0306", E, "a jump to a sequence number that the program does not have")
+MACRO_END_WITHOUT_DO = _define("E0307", E, "END n without a matching WHILE ... DO n")
+MACRO_LOOP_MISMATCH = _define("E0308", E, "loops that cross, a DO without END, or a loop number out of range")
+MACRO_NESTING = _define("E0309", E, "subprogram or macro calls nested deeper than the dialect allows")
+MACRO_NO_PROGRAM = _define("E0310", E, "a called program is in neither this file nor an -I folder")
+MACRO_ALARM = _define("E0311", E, "the program raised an alarm (#3000)")
+MACRO_STOP_MESSAGE = _define("N0312", N, "the program stops with an operator message (#3006, MSG)")
+MACRO_GOTO_INTO_LOOP = _define("E0313", E, "a jump into the body of a WHILE loop")
+MACRO_FILE_NOT_WRITTEN = _define("W0314", W, "a program-writing statement without --write-dir writes nothing")
+MACRO_FILE_REFUSED = _define("E0315", E, "a program-writing statement names a file outside --write-dir")
+MACRO_BAD_CALL = _define("E0316", E, "a call with a bad program, count or argument")
+MACRO_VACANT_WORD = _define("N0317", N, "a word whose value is a vacant variable is left out of the block")
+MACRO_RESERVED = _define("W0318", W, "a write to a variable the controller reserves for itself")
+MACRO_IF_STRUCTURE = _define("E0319", E, "ELSE, ELIF or ENDIF without IF, or an IF without ENDIF")
+MACRO_NO_RETURN = _define("W0320", W, "a subprogram ends without M99; it returns at its end")
+MACRO_BARE_ELIF = _define("W0321", W, "ELIF without a condition is taken as ELSE")
+MACRO_BAD_VALUE = _define("E0322", E, "a macro value that is not a finite number, or out of range for its use")
+MACRO_INPUT_TIMEOUT = _define("E0323", E, "a wait for an input that the --io file never makes valid")
+MACRO_BAD_IO_FILE = _define("E0324", E, "the --io file is malformed")
+MACRO_NOT_SUPPORTED = _define("E0325", E, "a macro feature cncc does not implement")
+
 # --- E05xx: frames and compensation ------------------------------------------------
 ARC_REPAIRED = _define("W0511", W, "an arc's centre was moved to make its radii agree")
 

@@ -13,19 +13,27 @@ from cncc.diagnostics import DiagnosticSink
 from cncc.dialects import Dialect
 from cncc.frontend.fastpath import is_straight_line, lower_straight
 from cncc.frontend.interp import InterpOptions, Interpreter
+from cncc.frontend.macro import MacroOptions, needs_executor, run_program
 from cncc.frontend.parser import ParseOptions, Parser
 from cncc.ir import Command
 from cncc.source import SourceFile
 
-__all__ = ["InterpOptions", "Interpreter", "ParseOptions", "Parser", "lower"]
+__all__ = ["InterpOptions", "Interpreter", "MacroOptions", "ParseOptions", "Parser", "lower"]
 
 
 def lower(src: SourceFile, dialect: Dialect, sink: DiagnosticSink,
-          options: InterpOptions | None = None) -> Iterator[Command]:
-    """Parse and interpret ``src``; yield IR commands in program order."""
+          options: InterpOptions | None = None, macro: MacroOptions | None = None) -> Iterator[Command]:
+    """Parse and interpret ``src``; yield IR commands in program order.
+
+    Programs of a dialect with a macro flavour (``fanuc``, ``szgh``) that use
+    variables, calls, jumps or loops run on the macro executor (``macro`` holds its
+    command-line options: ``-D`` presets, ``-I`` folders, the step budget ...).
+    """
     opts = options or InterpOptions()
     if is_straight_line(src.text):
         return lower_straight(src, dialect, sink, opts)
+    if needs_executor(src.text, dialect):
+        return run_program(src, dialect, sink, opts, macro)
     parser = Parser(dialect, sink, ParseOptions(strict=opts.strict))
     interp = Interpreter(dialect, sink, src.source_id, opts)
     return interp.run(parser.blocks(src))

@@ -119,7 +119,90 @@ class EndLoop:
     end: int
 
 
-Statement = Assign | Goto | If | While | EndLoop
+# ---- SZGH macro statements (cncc/grammar/szgh.lark) ---------------------------
+@dataclass(frozen=True, slots=True)
+class ProgramName:
+    """A program named by text (``M98 PHIDEFILE01``, ``Psub/1390``, ``PP[FFDE``).
+
+    ``call`` is True for the ``PP name`` short form, which is a call by itself.
+    """
+
+    text: str
+    call: bool
+    start: int
+    end: int
+
+
+@dataclass(frozen=True, slots=True)
+class IfBlock:
+    """``IF (cond)`` alone: opens an IF ... [ELIF ...] [ELSE ...] ENDIF block."""
+
+    cond: Expr
+    start: int
+    end: int
+
+
+@dataclass(frozen=True, slots=True)
+class ElseIf:
+    cond: Expr | None  # None: a bare ELIF (read as ELSE)
+    start: int
+    end: int
+
+
+@dataclass(frozen=True, slots=True)
+class Else:
+    start: int
+    end: int
+
+
+@dataclass(frozen=True, slots=True)
+class EndIf:
+    start: int
+    end: int
+
+
+@dataclass(frozen=True, slots=True)
+class IoWait:
+    """``WAT+X12`` (wait until input X12 is valid) / ``WAT-X12`` (invalid)."""
+
+    valid: bool
+    signal: str  # e.g. "X12"
+    start: int
+    end: int
+
+
+@dataclass(frozen=True, slots=True)
+class IoOut:
+    """``OUT+Y03`` / ``OUT-Y03``: switch an output on / off."""
+
+    on: bool
+    signal: str
+    start: int
+    end: int
+
+
+@dataclass(frozen=True, slots=True)
+class MessageStmt:
+    """``MSG(text)`` (show and pause) or ``STAF(text)`` (show, go on)."""
+
+    text: str
+    pause: bool
+    start: int
+    end: int
+
+
+@dataclass(frozen=True, slots=True)
+class FileStmt:
+    """``FILEON(name) FILEWD(blocks) FILEWC FILECE FILEMS(name)``."""
+
+    op: str  # "FILEON" ...
+    arg: str
+    start: int
+    end: int
+
+
+Statement = (Assign | Goto | If | While | EndLoop | ProgramName | IfBlock | ElseIf | Else | EndIf | IoWait | IoOut
+             | MessageStmt | FileStmt)
 
 
 @dataclass(frozen=True, slots=True)

@@ -1,0 +1,65 @@
+"""Macro languages: Fanuc macro B and SZGH, with subprograms and calls.
+
+``run_program(src, dialect, sink, interp_options, macro_options)`` is the entry the
+front end uses for dialects whose ``macro_flavour`` is ``fanuc`` or ``szgh``: it
+parses the program, runs it with :class:`~cncc.frontend.macro.executor.Executor`
+and yields IR commands.  ``needs_executor`` tells whether a program text uses any
+macro, call or jump feature at all (if not, the plain interpreter is enough).
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Iterator
+
+from cncc.diagnostics import DiagnosticSink
+from cncc.dialects import Dialect
+from cncc.frontend.interp import InterpOptions, Interpreter
+from cncc.frontend.macro.executor import EXEC_OPS, Executor, MacroOptions
+from cncc.frontend.parser import ParseOptions, Parser
+from cncc.frontend.syntax import Block
+from cncc.ir import Command
+from cncc.source import SourceFile
+
+MACRO_FLAVOURS = frozenset({"fanuc", "szgh"})
+_HINTS = re.compile(r"#|\[|=|GOTO|WHILE|IF|THEN|WAT|OUT|MSG|STAF|FILE|PP", re.IGNORECASE)
+_CODE_PATTERNS: dict[str, re.Pattern[str]] = {}
+
+
+def _code_pattern(dialect: Dialect) -> re.Pattern[str]:
+    pat = _CODE_PATTERNS.get(dialect.name)
+    if pat is None:
+        alts = []
+        for c in dialect.codes.values():
+            if c.op in EXEC_OPS:
+                whole, frac = divmod(c.tenths, 10)
+                num = f"0*{whole}" + (rf"\.{frac}" if frac else r"(?![\d.])")
+                alts.append(f"{c.letter}[ \t]*{num}")
+        if dialect.macro_flavour == "szgh":
+            alts.append(r"M[ \t]*[12]8\d\d")
+        pat = re.compile("|".join(alts) or "$^", re.IGNORECASE)
+        _CODE_PATTERNS[dialect.name] = pat
+    return pat
+
+
+def needs_executor(text: str, dialect: Dialect) -> bool:
+    """Whether ``text`` uses macro statements, calls, jumps or loops."""
+    if dialect.macro_flavour not in MACRO_FLAVOURS:
+        return False
+    return _HINTS.search(text) is not None or _code_pattern(dialect).search(text) is not None
+
+
+def run_program(src: SourceFile, dialect: Dialect, sink: DiagnosticSink, options: InterpOptions,
+                macro: MacroOptions | None = None) -> Iterator[Command]:
+    """Run ``src`` with the macro executor; yield IR commands in execution order."""
+    parser = Parser(dialect, sink, ParseOptions(strict=options.strict))
+    interp = Interpreter(dialect, sink, src.source_id, options)
+
+    def parse(source: SourceFile) -> list[Block]:
+        return list(parser.blocks(source))
+
+    ex = Executor(dialect, sink, interp, macro or MacroOptions(), parse)
+    return ex.run(src)
+
+
+__all__ = ["MACRO_FLAVOURS", "MacroOptions", "needs_executor", "run_program"]
