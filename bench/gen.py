@@ -7,7 +7,8 @@ import random
 
 
 def cam_program(n_lines: int, seed: int = 1) -> str:
-    """A CAM-style program: mostly G1 X Y Z, some G2/G3 with I J, feed changes."""
+    """A CAM-style program: mostly ``G1 X Y Z`` (G1 written on every block, as most
+    CAM posts do), some G2/G3 with I J, some feed changes."""
     rnd = random.Random(seed)
     out = ["%", "O1000 (generated CAM-style program)", "G90 G17 G71 G94", "G00 X0.0 Y0.0 Z5.0", "G01 Z-1.0 F800"]
     x = y = 0.0
@@ -30,10 +31,9 @@ def cam_program(n_lines: int, seed: int = 1) -> str:
             out.append(f"G01 X{x + rnd.uniform(-1, 1):.3f} Y{y + rnd.uniform(-1, 1):.3f} F{rnd.randint(300, 3000)}")
             x, y = float(out[-1].split()[1][1:]), float(out[-1].split()[2][1:])
         else:
-            prefix = "G01 " if out[-1].startswith("G0") and out[-1][:3] in ("G02", "G03") else ""
             x = round(x + rnd.uniform(-0.5, 0.5), 3)
             y = round(y + rnd.uniform(-0.5, 0.5), 3)
             z = round(min(0.0, z + rnd.uniform(-0.05, 0.05)), 3)
-            out.append(f"{prefix}X{x:.3f} Y{y:.3f} Z{z:.3f}")
+            out.append(f"G1 X{x:.3f} Y{y:.3f} Z{z:.3f}")
     out += ["G00 Z5.0", "M30"]
     return "\n".join(out) + "\n"

@@ -30,7 +30,7 @@ def lower(src: SourceFile, dialect: Dialect, sink: DiagnosticSink,
     command-line options: ``-D`` presets, ``-I`` folders, the step budget ...).
     """
     opts = options or InterpOptions()
-    if is_straight_line(src.text):
+    if is_straight_line(src.text, dialect):
         return lower_straight(src, dialect, sink, opts)
     if needs_executor(src.text, dialect):
         return run_program(src, dialect, sink, opts, macro)

@@ -21,9 +21,9 @@ from cncc.dialects import Dialect
 from cncc.diagnostics import DiagnosticSink
 from cncc.frontend.interp import InterpOptions, Interpreter
 from cncc.frontend.parser import MAX_LINE_CHARS, ParseOptions, Parser
-from cncc.ir import Arc, Command, FeedRate, Plane
-from cncc.ir.fastnew import new_linear, new_rapid, new_span
-from cncc.source import SourceFile
+from cncc.ir import Arc, Command, FeedRate, Linear, Plane
+from cncc.ir.fastnew import new_rapid, new_span
+from cncc.source import SourceFile, Span
 
 _NUM = r"([-+]?(?:\d+\.?\d*|\.\d+))"
 CAM_LINE = re.compile(
@@ -34,91 +34,165 @@ CAM_LINE = re.compile(
 
 _MOTION_OF = {"0": "rapid", "1": "linear", "2": "arc_cw", "3": "arc_ccw"}
 _CODE_OF = {"rapid": "G00", "linear": "G01", "arc_cw": "G02", "arc_ccw": "G03"}
-_CALL_HINT = re.compile(r"[MG]0*(?:9[89]|6[5-7]|22|800)(?![\d.])")
-_KEYWORDS = ("GOTO", "WHILE", "IF", "WAT", "OUT", "FILE", "MSG", "STAF", "SUB", "CALL", "REPEAT", "ELSE", "BREAK",
-             "CONTINUE")
+_KEYWORDS = ("GOTO", "WHILE", "IF", "THEN", "WAT", "OUT", "FILE", "MSG", "STAF", "PP", "SUB", "CALL", "REPEAT",
+             "ELSE", "BREAK", "CONTINUE")
+_CONTROL_PATTERNS: dict[str, re.Pattern[str]] = {}
 
 
-def is_straight_line(text: str) -> bool:
-    """True when the program has no macro syntax, calls or jumps at all."""
+def _control_codes(dialect: Dialect) -> re.Pattern[str]:
+    """Codes that call, return or jump (M98, M99, G65, G66 ...), on upper-case text."""
+    pat = _CONTROL_PATTERNS.get(dialect.name)
+    if pat is None:
+        from cncc.frontend.macro.executor import EXEC_OPS
+
+        alts = [r"M[ \t]*0*[12]8\d\d(?![\d.])"]
+        for c in dialect.codes.values():
+            if c.op in EXEC_OPS:
+                whole, frac = divmod(c.tenths, 10)
+                alts.append(f"{c.letter}[ \t]*0*{whole}" + (rf"\.{frac}" if frac else r"(?![\d.])"))
+        pat = re.compile("|".join(alts))
+        _CONTROL_PATTERNS[dialect.name] = pat
+    return pat
+
+
+def is_straight_line(text: str, dialect: Dialect) -> bool:
+    """True when the program has no macro syntax, calls or jumps at all.
+
+    Conservative: a comment that merely contains a keyword sends the program down
+    the general path, which is always correct, only slower.
+    """
     if "#" in text or "[" in text or "=" in text or "<" in text:
         return False
     upper = text.upper()
     if any(kw in upper for kw in _KEYWORDS):
         return False
-    return _CALL_HINT.search(upper) is None
+    return _control_codes(dialect).search(upper) is None
 
 
 def lower_straight(src: SourceFile, dialect: Dialect, sink: DiagnosticSink, opts: InterpOptions) -> Iterator[Command]:
-    """Lower a straight-line program, taking the fast path where it applies."""
+    """Lower a straight-line program, taking the fast path where it applies.
+
+    The interpreter's state is cached in locals while consecutive lines take the
+    fast path, and written back before any line goes through the general path.
+    """
     parser = Parser(dialect, sink, ParseOptions(strict=opts.strict))
     it = Interpreter(dialect, sink, src.source_id, opts)
     text = src.text
     sid = src.source_id
     fullmatch = CAM_LINE.fullmatch
+    find = text.find
     semicolon_ok = dialect.block_end == ";"
+    new = object.__new__
+    sp_id, sp_start, sp_end = _SPAN_SET
+    l_span, l_frame, l_start, l_end, l_feed, l_motion, l_origin = _LINEAR_SET
     n = len(text)
     pos = 0
     line_no = 0
+    stale = True
+    dirty = False  # the locals hold modes not yet written back to the interpreter
+    feed_prog: float | None = None
+    # cached interpreter state (valid while ``stale`` is False)
+    ok = False
+    cur = ""
+    inc = False
+    feed_mm_min = 0.0
+    path = it.modal.path
+    frame = it.frame
+    k_int = k_pt = 1.0
+    p = it.pos
     while pos < n:
-        nl = text.find("\n", pos)
+        nl = find("\n", pos)
         end = n if nl < 0 else nl
         line_no += 1
-        m = fullmatch(text, pos, end) if end - pos <= MAX_LINE_CHARS else None
+        if stale:
+            modal = it.modal
+            ok = not (it.ended or modal.cycle or modal.per_rev)
+            cur = modal.motion
+            inc = modal.incremental
+            frame = it.frame
+            rd = it.reader
+            k_pt = rd.mm_per_unit
+            k_int = rd.liu_length_mm if rd.liu_rule else k_pt
+            feed_prog = modal.feed
+            feed_mm_min = -1.0 if feed_prog is None else feed_prog * k_pt
+            path = modal.path
+            p = it.pos
+            stale = False
+        m = fullmatch(text, pos, end) if ok and end - pos <= MAX_LINE_CHARS else None
         if m is not None:
             g, xs, ys, zs, is_, js, fs, semi = m.groups()
-            if (xs is not None or ys is not None or zs is not None) and (semicolon_ok or not semi):
-                modal = it.modal
-                if not (it.ended or modal.cycle or modal.per_rev or (modal.feed is None and fs is None)):
-                    motion = modal.motion if g is None else _MOTION_OF[g]
-                    arc = motion == "arc_cw" or motion == "arc_ccw"
-                    if (arc and (zs is not None or (is_ is None and js is None) or it.frame.plane is not Plane.XY)) or (
-                            not arc and (is_ is not None or js is not None)) or motion not in _MOTION_OF.values():
-                        motion = ""  # not for the fast path
-                    if motion:
-                        if motion != modal.motion:
-                            it.modal = modal = modal.with_(motion=motion)
-                            it.group_codes["motion"] = _CODE_OF[motion]
-                        rd = it.reader
-                        p = it.pos
-                        x, y, z = p[0], p[1], p[2]
-                        k_int = rd.liu_length_mm if rd.liu_rule else rd.mm_per_unit
-                        k_pt = rd.mm_per_unit
-                        inc = modal.incremental
-                        if xs is not None:
-                            v = float(xs) * (k_pt if "." in xs else k_int)
-                            x = x + v if inc else v
-                        if ys is not None:
-                            v = float(ys) * (k_pt if "." in ys else k_int)
-                            y = y + v if inc else v
-                        if zs is not None:
-                            v = float(zs) * (k_pt if "." in zs else k_int)
-                            z = z + v if inc else v
-                        new = (x, y, z, p[3], p[4], p[5])
-                        frame = it.frame
-                        if fs is not None:
-                            f = float(fs)
-                            it.modal = modal = modal.with_(feed=f)
-                            yield FeedRate(new_span(sid, m.start(7) - 1, m.end(7)), frame, f * k_pt, False)
-                        if motion == "rapid":
-                            yield new_rapid(new_span(sid, pos, end), frame, p, new, modal.path)
-                        elif arc:
-                            ci = x0 = p[0]
-                            cj = y0 = p[1]
-                            if is_ is not None:
-                                ci = x0 + float(is_) * (k_pt if "." in is_ else k_int)
-                            if js is not None:
-                                cj = y0 + float(js) * (k_pt if "." in js else k_int)
-                            yield Arc(new_span(sid, pos, end), frame, p, new, (ci, cj, p[2], p[3], p[4], p[5]),
-                                      -1 if motion == "arc_cw" else 1, Plane.XY, modal.feed * k_pt,  # type: ignore[operator]
-                                      modal.path)
-                        else:
-                            yield new_linear(new_span(sid, pos, end), frame, p, new, modal.feed * k_pt,  # type: ignore[operator]
-                                             modal.path)
-                        it.pos = new
-                        pos = end + 1
-                        continue
+            motion = cur if g is None else _MOTION_OF[g]
+            if ((xs is not None or ys is not None or zs is not None) and (semicolon_ok or not semi)
+                    and (fs is not None or feed_mm_min >= 0.0 or motion == "rapid")
+                    and (motion == "linear" or motion == "rapid" if is_ is None and js is None
+                         else (motion == "arc_cw" or motion == "arc_ccw") and zs is None
+                         and frame.plane is Plane.XY)):
+                if motion != cur:
+                    cur = motion
+                    dirty = True
+                x, y, z = p[0], p[1], p[2]
+                if xs is not None:
+                    v = float(xs) * (k_pt if "." in xs else k_int)
+                    x = x + v if inc else v
+                if ys is not None:
+                    v = float(ys) * (k_pt if "." in ys else k_int)
+                    y = y + v if inc else v
+                if zs is not None:
+                    v = float(zs) * (k_pt if "." in zs else k_int)
+                    z = z + v if inc else v
+                q = (x, y, z, p[3], p[4], p[5])
+                if fs is not None:
+                    feed_prog = float(fs)
+                    feed_mm_min = feed_prog * k_pt
+                    dirty = True
+                    yield FeedRate(new_span(sid, m.start(7) - 1, m.end(7)), frame, feed_mm_min, False)
+                span = new(Span)
+                sp_id(span, sid)
+                sp_start(span, pos)
+                sp_end(span, end)
+                if motion == "linear":
+                    cmd = new(Linear)
+                    l_span(cmd, span)
+                    l_frame(cmd, frame)
+                    l_start(cmd, p)
+                    l_end(cmd, q)
+                    l_feed(cmd, feed_mm_min)
+                    l_motion(cmd, path)
+                    l_origin(cmd, "")
+                    yield cmd
+                elif motion == "rapid":
+                    yield new_rapid(span, frame, p, q, path)
+                else:
+                    ci, cj = p[0], p[1]
+                    if is_ is not None:
+                        ci += float(is_) * (k_pt if "." in is_ else k_int)
+                    if js is not None:
+                        cj += float(js) * (k_pt if "." in js else k_int)
+                    yield Arc(span, frame, p, q, (ci, cj, p[2], p[3], p[4], p[5]),
+                              -1 if motion == "arc_cw" else 1, Plane.XY, feed_mm_min, path)
+                p = q
+                pos = end + 1
+                continue
         if end > pos:
+            it.pos = p
+            if dirty:
+                _write_back(it, cur, feed_prog)
+                dirty = False
             for block in parser.blocks_of_line(src, pos, end, line_no):
                 yield from it.execute(block)
+            stale = True
         pos = end + 1
+    it.pos = p
+    if dirty:
+        _write_back(it, cur, feed_prog)
+
+
+def _write_back(it: Interpreter, motion: str, feed: float | None) -> None:
+    """Store the modes the fast path changed into the interpreter's modal state."""
+    it.modal = it.modal.with_(motion=motion, feed=feed)
+    it.group_codes["motion"] = _CODE_OF[motion]
+
+
+_SPAN_SET = tuple(getattr(Span, f).__set__ for f in ("source_id", "start", "end"))
+_LINEAR_SET = tuple(getattr(Linear, f).__set__ for f in ("span", "frame", "start", "end", "feed_mm_min", "motion",
+                                                         "origin"))

@@ -33,7 +33,7 @@ def both(text: str, dialect: str = "syntec") -> tuple[tuple[list[object], list[o
 
 def test_cam_program_agrees() -> None:
     text = cam_program(3000, seed=7)
-    assert is_straight_line(text)
+    assert is_straight_line(text, load_dialect("syntec"))
     (fast, d1), (slow, d2) = both(text)
     assert len(fast) > 2900
     assert fast == slow
@@ -43,7 +43,7 @@ def test_cam_program_agrees() -> None:
 def test_examples_agree() -> None:
     for path in sorted((ROOT / "examples").glob("*.nc")):
         text = path.read_text()
-        if is_straight_line(text):
+        if is_straight_line(text, load_dialect("syntec")):
             (fast, d1), (slow, d2) = both(text)
             assert fast == slow, path
             assert d1 == d2, path
