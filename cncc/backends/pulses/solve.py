@@ -172,15 +172,17 @@ def exact_axis_steps(traj: Trajectory, seg: Segments, lo: int, hi: int, i: int, 
     aa = a0[c] + tau_a * jk[c]
     jj = jk[c]
     length = pend[mv] - tau_a
+    tau_e = pend[mv]
+    end_state = (y_all[mv + 1] - pa, v0[c] + tau_e * (a0[c] + tau_e * jk[c] / 2), a0[c] + tau_e * jk[c])
     t_abs = traj.t0_s[ph[c]] + tau_a
     phase = ph[c].astype(np.int32)
-    u = _solve(spec, counts, direction, na, pa, va, aa, jj, length)
+    u = _solve(spec, counts, direction, na, pa, va, aa, jj, length, end_state)
     u += np.repeat(t_abs, counts)
     return RawSteps(u, np.repeat(direction, counts), np.repeat(phase, counts), t_abs, direction, phase)
 
 
 def _solve(spec: AxisPulseSpec, counts: I64, direction: I8, na: I64, pa: F64, va: F64, aa: F64, jj: F64,
-           length: F64) -> F64:
+           length: F64, end_state: tuple[F64, F64, F64]) -> F64:
     """Local time ``u`` (from piece start) of every step of every piece, concatenated.
 
     ``d`` is the distance from the piece start to the step's boundary; then
@@ -216,24 +218,38 @@ def _solve(spec: AxisPulseSpec, counts: I64, direction: I8, na: I64, pa: F64, va
     lim = np.repeat(length, counts)
     jerky = jj != 0
     if jerky.any():
+        ends = tuple(np.repeat(x, counts) for x in end_state)
         if jerky.all():
-            u = _polish(u, d, vs, acc, np.repeat(jj, counts), np.repeat(dirf, counts), lim)
+            u = _polish(u, d, vs, acc, np.repeat(jj, counts), np.repeat(dirf, counts), lim, ends)
         else:
             sel = np.flatnonzero(np.repeat(jerky, counts))
             u[sel] = _polish(u[sel], d[sel], vs[sel], acc[sel], np.repeat(jj, counts)[sel],
-                             np.repeat(dirf, counts)[sel], lim[sel])
+                             np.repeat(dirf, counts)[sel], lim[sel], tuple(x[sel] for x in ends))
     u = np.where(np.isfinite(u), u, lim)
     np.clip(u, 0.0, lim, out=u)
     return u
 
 
-def _polish(u: F64, d: F64, v: F64, a: F64, j: F64, dirs: F64, lim: F64) -> F64:
-    """Plain Newton from the no-jerk guess; the few that do not settle go to :func:`_newton`."""
+def _polish(u: F64, d: F64, v: F64, a: F64, j: F64, dirs: F64, lim: F64, ends: tuple[F64, ...]) -> F64:
+    """Plain Newton from the no-jerk guess; the few that do not settle go to :func:`_newton`.
+
+    The guess expands about the nearer end of the piece (in position): from the start,
+    the no-jerk root, or the pure-jerk root when starting from rest; from the end
+    (``ends`` = distance to it, velocity and acceleration there) the same backwards,
+    which matters when a phase comes to rest (a cube-root-like crossing).
+    """
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         bad0 = ~(np.isfinite(u) & (u >= 0) & (u <= lim))
         if bad0.any():  # e.g. starting from rest: use the pure-jerk root
             guess = np.cbrt(6 * d / j)
             u = np.where(bad0, np.where((guess >= 0) & (guess <= lim), guess, 0.5 * lim), u)
+        span, ve, ae = ends
+        rest = span - d  # distance from the boundary to the piece end
+        near_end = np.abs(rest) < np.abs(d)
+        if near_end.any():
+            w = 2 * rest / (ve + dirs * np.sqrt(np.maximum(ve * ve - 2 * ae * rest, 0.0)))
+            w = np.where(np.isfinite(w) & (w >= 0) & (w <= lim), w, np.cbrt(6 * rest / j))
+            u = np.where(near_end & (w >= 0) & (w <= lim), lim - w, u)
         j6, j2, a2 = j / 6, j / 2, a / 2
         step = u
         for _ in range(NEWTON_PLAIN_ITER):

@@ -1,0 +1,114 @@
+"""Pulse backend benchmark: steps generated per second and peak memory.
+
+Builds a 3-axis program of straight S-curve moves (7 constant-jerk phases each) with
+about ``--steps`` steps in total (default 10^8), streams it through
+:func:`cncc.backends.pulses.generate_pulses` and prints steps/s, then the peak
+memory traced during a second pass, beside the time a plain numpy pass (a cubic
+evaluated at the same number of samples, in chunks of the same size) takes.
+
+    python bench/pulses.py [--steps 100000000] [--mode exact|interp] [--chunk 262144]
+"""
+
+from __future__ import annotations
+
+import argparse
+import time
+import tracemalloc
+
+import numpy as np
+
+from cncc.backends.pulses import generate_pulses
+from cncc.backends.pulses.generate import DEFAULT_CHUNK_STEPS
+from cncc.ir.machine import Axis, MachineModel, StepOutput
+from cncc.ir.trajectory import Trajectory
+
+STEPS_PER_MM = 1000.0
+V_MM_S, A_MM_S2, J_MM_S3 = 100.0, 1000.0, 20000.0
+
+
+def program(total_steps: int, seed: int = 1) -> Trajectory:
+    """Rest-to-rest S-curve moves in random directions, ~60 mm each."""
+    rng = np.random.default_rng(seed)
+    tj = A_MM_S2 / J_MM_S3
+    ta = V_MM_S / A_MM_S2 - tj
+    ramp_mm = V_MM_S * (ta + 2 * tj)  # distance of accel + decel
+    length = 60.0
+    cruise = (length - ramp_mm) / V_MM_S
+    u = rng.normal(size=(max(1, int(total_steps / (length * STEPS_PER_MM * 1.5))), 3))
+    u /= np.linalg.norm(u, axis=1, keepdims=True)
+    per_move = np.abs(u).sum(axis=1) * length * STEPS_PER_MM
+    moves = int(np.searchsorted(np.cumsum(per_move), total_steps)) + 1
+    u = u[:moves] if moves <= u.shape[0] else np.vstack([u] * (moves // u.shape[0] + 1))[:moves]
+    dur1 = np.array([tj, ta, tj, cruise, tj, ta, tj])
+    a1 = np.array([0.0, A_MM_S2, A_MM_S2, 0.0, 0.0, -A_MM_S2, -A_MM_S2])
+    j1 = np.array([J_MM_S3, 0.0, -J_MM_S3, 0.0, -J_MM_S3, 0.0, J_MM_S3])
+    v1 = np.zeros(7)
+    s1 = np.zeros(7)
+    for k in range(6):  # path-coordinate start states of the 7 phases
+        t = dur1[k]
+        s1[k + 1] = s1[k] + v1[k] * t + a1[k] * t * t / 2 + j1[k] * t**3 / 6
+        v1[k + 1] = v1[k] + a1[k] * t + j1[k] * t * t / 2
+    n = moves * 7
+    dur = np.tile(dur1, moves)
+    t0 = np.concatenate([[0.0], np.cumsum(dur)[:-1]])
+    start = np.concatenate([np.zeros((1, 3)), np.cumsum(u * length, axis=0)[:-1]])
+    uu = np.repeat(u, 7, axis=0)
+    p0 = np.repeat(start, 7, axis=0) + uu * np.tile(s1, moves)[:, None]
+    v0 = uu * np.tile(v1, moves)[:, None]
+    a0 = uu * np.tile(a1, moves)[:, None]
+    j = uu * np.tile(j1, moves)[:, None]
+    cmd = np.repeat(np.arange(moves, dtype=np.int64), 7)
+    return Trajectory(t0, dur, p0, v0, a0, j, cmd, np.zeros(n, np.int8), ("X", "Y", "Z"))
+
+
+def machine() -> MachineModel:
+    step = StepOutput(steps_per_mm=STEPS_PER_MM, max_step_rate_hz=2e6, pulse_width_ns=100, dir_setup_ns=200)
+    return MachineModel("bench", tuple(Axis(a, step=step) for a in "XYZ"))
+
+
+def run(traj: Trajectory, mode: str, chunk: int) -> tuple[int, float]:
+    t = time.perf_counter()
+    total = 0
+    for c in generate_pulses(traj, machine(), mode=mode, chunk_steps=chunk):
+        total += c.step_count
+    return total, time.perf_counter() - t
+
+
+def numpy_pass(samples: int, chunk: int) -> float:
+    """A plain numpy pass: evaluate one cubic at ``samples`` points, ``chunk`` at a time."""
+    t = time.perf_counter()
+    p0, v0, a0, j = 1.0, 100.0, 1000.0, 20000.0
+    acc = 0.0
+    for lo in range(0, samples, chunk):
+        tau = np.arange(lo, min(lo + chunk, samples), dtype=np.float64) * 1e-6
+        p = p0 + tau * (v0 + tau * (a0 / 2 + tau * j / 6))
+        acc += float(p[-1])
+    return time.perf_counter() - t
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--steps", type=int, default=100_000_000)
+    ap.add_argument("--mode", default="exact", choices=["exact", "interp"])
+    ap.add_argument("--chunk", type=int, default=DEFAULT_CHUNK_STEPS)
+    args = ap.parse_args()
+    traj = program(args.steps)
+    print(f"program: {traj.phase_count} phases, 3 axes, {traj.duration_total_s:.1f} s of motion, mode {args.mode}")
+    steps, gen_s = run(traj, args.mode, args.chunk)
+    base_s = numpy_pass(steps, args.chunk)
+    tracemalloc.start()
+    run(traj, args.mode, args.chunk)
+    _, peak = tracemalloc.get_traced_memory()
+    tracemalloc.stop()
+    traj_mb = sum(a.nbytes for a in (traj.t0_s, traj.duration_s, traj.p0_mm, traj.v0_mm_s, traj.a0_mm_s2,
+                                     traj.j_mm_s3, traj.cmd_index, traj.limit)) / 1e6
+    print(f"steps generated      {steps:,}")
+    print(f"generation           {gen_s:8.2f} s   {steps / gen_s / 1e6:7.1f} M steps/s   (goal >= 20)")
+    print(f"plain numpy pass     {base_s:8.2f} s   {steps / base_s / 1e6:7.1f} M samples/s")
+    print(f"ratio generation / numpy pass: {gen_s / base_s:.2f}x")
+    print(f"peak traced memory   {peak / 1e6:8.1f} MB  (trajectory itself {traj_mb:.1f} MB; "
+          f"all steps as int64 would be {steps * 8 / 1e6:.0f} MB)")
+
+
+if __name__ == "__main__":
+    main()
