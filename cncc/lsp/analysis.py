@@ -105,6 +105,9 @@ def _compile(a: Analysis, check: Callable[[], None]) -> None:
     cmds = driver.path_passes(driver.front_end(src, a.dialect, a.machine, opts, sink), a.dialect, a.machine,
                               opts, sink)
     _collect(a, cmds, check)
+    if settings.opt_level > 0 and req.stop_after < 0 and len(a.commands) < MAX_COMMANDS:
+        check()
+        _planned_times(a, settings.opt_level)
 
 
 def _machine(settings: Settings, sink: DiagnosticSink) -> MachineModel:
@@ -149,6 +152,35 @@ def _collect(a: Analysis, cmds: Iterator[Command], check: Callable[[], None]) ->
             times[line] = times.get(line, 0.0) + t
         if 0 <= stop_after < span.start:
             return
+
+
+def _planned_times(a: Analysis, level: int) -> None:
+    """Replace the nominal motion times by the planner's at ``-O<level>``."""
+    from cncc import driver
+    from cncc.backends.nominal import command_time_s
+    from cncc.ir import MOTION_TYPES
+
+    machine = a.machine
+    assert machine is not None
+    cmds = a.commands
+    try:
+        traj, _how = driver.plan_trajectory(cmds, machine, level, a.sink)
+    except Exception as exc:  # the planner is young: keep the nominal times, say why
+        a.sink.emit(dg.NOT_SUPPORTED, Span(0, 0, 0), f"-O{level} planning failed ({type(exc).__name__}: {exc}); "
+                    "inlay hints show nominal times", severity=dg.Severity.NOTE)
+        return
+    per_cmd = [0.0] * len(cmds)
+    for k, d in zip(traj.cmd_index.tolist(), traj.duration_s.tolist(), strict=True):
+        if 0 <= k < len(per_cmd):
+            per_cmd[k] += d
+    line_of = a.index.line_of
+    times: dict[int, float] = {}
+    for c, t_motion in zip(cmds, per_cmd, strict=True):
+        t = t_motion if isinstance(c, MOTION_TYPES) else command_time_s(c, machine)[0]
+        if t > 0.0:
+            line = line_of(c.span.start)
+            times[line] = times.get(line, 0.0) + t
+    a.line_time_s = times
 
 
 # ---- target checks ------------------------------------------------------------------
