@@ -20,7 +20,7 @@ import time
 import tracemalloc
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from gen import cam_program  # noqa: E402
+from gen import cam_program
 
 
 def run_cncc(text: str) -> int:
@@ -60,11 +60,12 @@ def best_of(fn, text: str, repeat: int) -> float:  # type: ignore[no-untyped-def
 
 def peak_rss_child(n_lines: int) -> float:
     """Peak RSS (MB) of a fresh process that generates and lowers the file."""
+    here = os.path.dirname(os.path.abspath(__file__))
     code = (
-        "import sys, resource; sys.path.insert(0, %r); from gen import cam_program; "
-        "from frontend import run_cncc; t = cam_program(%d); run_cncc(t); "
+        f"import sys, resource; sys.path.insert(0, {here!r}); from gen import cam_program; "
+        f"from frontend import run_cncc; t = cam_program({n_lines}); run_cncc(t); "
         "print(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024)"
-    ) % (os.path.dirname(os.path.abspath(__file__)), n_lines)
+    )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     return float(out.stdout.strip())
 

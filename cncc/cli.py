@@ -39,6 +39,22 @@ def _parser() -> argparse.ArgumentParser:
                    help="timing report columns: planner levels and/or machines, e.g. O0,O1,O2 or szgh-990mdb@O1")
     p.add_argument("--annotate-time", action="store_true",
                    help="timing: output the program with each block's elapsed time as a comment")
+    m = p.add_argument_group("macros and subprograms")
+    m.add_argument("-D", dest="defines", action="append", default=[], metavar="#N=VALUE",
+                   help="preset a macro variable, e.g. -D#100=5 (repeatable)")
+    m.add_argument("-I", dest="include_dirs", action="append", default=[], metavar="DIR",
+                   help="folder where called subprograms are found (repeatable, searched in order)")
+    m.add_argument("-M", dest="list_deps", action="store_true",
+                   help="list the subprogram files the program calls, as 'program: file...'")
+    m.add_argument("-E", dest="expand", action="store_true",
+                   help="print the program flattened in its own dialect (macros, calls, loops and cycles "
+                        "expanded; comments map blocks to source lines)")
+    m.add_argument("--max-steps", type=int, default=5_000_000, metavar="N",
+                   help="stop a program after N blocks and statements (default 5000000)")
+    m.add_argument("--io", dest="io_file", metavar="FILE", help="input values for WAT, M input tests and #1000.. "
+                   "(lines 'X12 = 1', 'M14 = on', '#1800 = 5')")
+    m.add_argument("--write-dir", metavar="DIR",
+                   help="the only folder SZGH FILEON/FILEMS may write programs into (default: write nothing)")
     p.add_argument("--version", action="version", version=f"cncc {__version__}")
     return p
 
@@ -57,6 +73,30 @@ def _value(text: str) -> Any:
         return float(text)
     except ValueError:
         return text
+
+
+def _macro_options(opts: Any, ns: argparse.Namespace, error: Any) -> None:
+    """-D -I -M -E --max-steps --io --write-dir."""
+    for d in ns.defines:
+        name, sep, val = d.partition("=")
+        number = name.strip().lstrip("#")
+        try:
+            opts.defines[int(number)] = float(val)
+        except ValueError:
+            error(f"-D{d}: expected -D#NUMBER=VALUE, e.g. -D#100=5")
+        if not sep:
+            error(f"-D{d}: expected -D#NUMBER=VALUE, e.g. -D#100=5")
+    opts.include_dirs = list(ns.include_dirs)
+    opts.list_deps = ns.list_deps
+    if ns.expand:
+        opts.expand = True
+        opts.emit = "gcode"
+        opts.target = None
+    if ns.max_steps < 1:
+        error("--max-steps must be at least 1")
+    opts.max_steps = ns.max_steps
+    opts.io_file = ns.io_file
+    opts.write_dir = ns.write_dir
 
 
 def build_options(ns: argparse.Namespace, error: Any) -> Any:
@@ -80,6 +120,7 @@ def build_options(ns: argparse.Namespace, error: Any) -> Any:
             opts.dialect_options[key.replace("-", "_")] = _value(val)
         else:
             error(f"unknown flag -f{flag}")
+    _macro_options(opts, ns, error)
     for w in ns.warnings:
         if w == "error":
             opts.werror = True
@@ -114,9 +155,8 @@ def run(opts: Any) -> int:
     from cncc.render import render
 
     result = compile_files(opts)
-    if not opts.syntax_only and not result.sink.has_errors:
-        write_output(result.output, opts.output, opts.inputs, result.sink)
-    elif not opts.syntax_only and result.output and opts.output in (None, "-"):
+    to_stdout = opts.output in (None, "-")
+    if not opts.syntax_only and (not result.sink.has_errors or (result.output and to_stdout)):
         write_output(result.output, opts.output, opts.inputs, result.sink)
     err = sys.stderr
     for d in result.sink:

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import contextlib
 import re
 from typing import Any
 
@@ -31,10 +32,8 @@ def calls(lines: list[str], *names: str) -> list[tuple[str, list[float]]]:
         args = []
         for a in m.group(2).split(","):
             a = a.strip()
-            try:
+            with contextlib.suppress(ValueError):
                 args.append(float(a))
-            except ValueError:
-                pass
         out.append((m.group(1), args))
     return out
 

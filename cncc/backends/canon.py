@@ -149,7 +149,8 @@ def _set_mode(c: SetMode, last_g5x: str, last_g92: str) -> Iterator[str]:
             yield PREFIX + g92
     elif c.name == "tool_length_offset":
         z = frame.tool_length_mm / frame.units.mm_per_unit
-        yield PREFIX + "USE_TOOL_LENGTH_OFFSET(0.0000, 0.0000, " + _f(z) + ", 0.0000, 0.0000, 0.0000, 0.0000, 0.0000, 0.0000)"
+        rest = ", ".join(["0.0000"] * 6)
+        yield PREFIX + f"USE_TOOL_LENGTH_OFFSET(0.0000, 0.0000, {_f(z)}, {rest})"
     elif c.name == "path_mode":
         mode = "CANON_EXACT_STOP" if c.value is PathMode.EXACT_STOP else "CANON_CONTINUOUS"
         yield PREFIX + f"SET_MOTION_CONTROL_MODE({mode}, 0.0000)"

@@ -214,8 +214,9 @@ class Interpreter:
                     group = cdef.group
                 prev = groups.get(group)
                 if prev is not None and group not in MODAL_FREE_GROUPS and group != "m:other":
+                    gname = group.removeprefix("m:")
                     self.sink.emit(dg.MODAL_CONFLICT, self.word_span(w),
-                                   f"{cdef.name} and {prev.name} are in the same modal group ({group.removeprefix('m:')})")
+                                   f"{cdef.name} and {prev.name} are in the same modal group ({gname})")
                     ok = False
                     continue
                 groups[group] = cdef

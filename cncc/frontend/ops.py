@@ -44,6 +44,7 @@ if TYPE_CHECKING:
 Handler = Callable[["Interpreter", "BlockContext", CodeDef], None]
 MotionHandler = Callable[["Interpreter", "BlockContext", Vec6], None]
 HANDLERS: dict[str, Handler] = {}
+BLOCK_HOOKS: list[Callable[[Interpreter, BlockContext], None]] = []  # words without a code (H, D ...)
 MOTIONS: dict[str, MotionHandler] = {}
 AXES = "XYZABC"
 
@@ -71,6 +72,8 @@ def run_block(it: Interpreter, ctx: BlockContext) -> None:
     for c in early:
         _dispatch(it, ctx, c)
     _feed_speed_tool(it, ctx)
+    for hook in BLOCK_HOOKS:
+        hook(it, ctx)
     for c in sorted((m for m in ms if m.op in _M_ORDER), key=lambda m: _M_ORDER[m.op]):
         _dispatch(it, ctx, c)
     for c in gs:
@@ -129,6 +132,10 @@ def _feed_speed_tool(it: Interpreter, ctx: BlockContext) -> None:
 # ---- positions ------------------------------------------------------------------------
 def target(it: Interpreter, ctx: BlockContext) -> Vec6:
     """The block's end point in program coordinates (mm/deg)."""
+    if it.frame.polar is not None and "machine_coords" not in ctx.block_flags:
+        from cncc.frontend.transforms import polar_target
+
+        return polar_target(it, ctx)
     p = list(it.pos)
     machine = "machine_coords" in ctx.block_flags
     off = it.frame.total_offset_mm
@@ -180,7 +187,7 @@ def feed_mm_min(it: Interpreter, ctx: BlockContext) -> float | None:
         if not it.modal.default_feed_noted:
             it.modal = it.modal.with_(default_feed_noted=True)
             it.sink.emit(dg.DEFAULT_FEED, ctx.span, f"no F programmed; using the {d.name} default F{f:g}")
-        return f * (1.0 if it.modal.per_rev else 1.0) * _feed_scale(it)
+        return f * _feed_scale(it)
     return f * _feed_scale(it)
 
 
@@ -192,7 +199,8 @@ def _feed_scale(it: Interpreter) -> float:
 
 
 def _rapid(it: Interpreter, ctx: BlockContext, end: Vec6) -> None:
-    ctx.out.append(Rapid(ctx.span, it.frame, it.pos, end, block_motion(it, ctx)))
+    origin = "G53" if "machine_coords" in ctx.block_flags else ""  # transforms leave G53 moves alone
+    ctx.out.append(Rapid(ctx.span, it.frame, it.pos, end, block_motion(it, ctx), origin))
     it.pos = end
 
 
@@ -200,7 +208,8 @@ def _linear(it: Interpreter, ctx: BlockContext, end: Vec6) -> None:
     f = feed_mm_min(it, ctx)
     if f is None:
         return
-    ctx.out.append(Linear(ctx.span, it.frame, it.pos, end, f, block_motion(it, ctx)))
+    origin = "G53" if "machine_coords" in ctx.block_flags else ""
+    ctx.out.append(Linear(ctx.span, it.frame, it.pos, end, f, block_motion(it, ctx), origin))
     it.pos = end
 
 
@@ -368,6 +377,8 @@ def _exact_once(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
 @handler("absolute", "incremental")
 def _distance(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     it.modal = it.modal.with_(incremental=c.op == "incremental")
+    if it.frame.incremental != it.modal.incremental:  # transforms treat increments differently
+        it.set_frame(replace(it.frame, incremental=it.modal.incremental))
 
 
 @handler("return_initial", "return_r")
@@ -458,7 +469,8 @@ def _home_via(it: Interpreter, ctx: BlockContext, c: CodeDef, index: int) -> Non
     ctx.out.append(Rapid(ctx.span, it.frame, it.pos, mid, block_motion(it, ctx), origin=c.name))
     it.pos = mid
     end = tuple(ref[i] if i in named else mid[i] for i in range(6))
-    ctx.out.append(Rapid(ctx.span, it.frame, mid, end, block_motion(it, ctx), origin=c.name))  # type: ignore[arg-type]
+    ctx.out.append(Rapid(ctx.span, it.frame, mid, end, block_motion(it, ctx),  # type: ignore[arg-type]
+                         origin=f"{c.name} ref"))  # "ref": the leg no transform applies to
     it.pos = end  # type: ignore[assignment]
     flags = tuple(i in named for i in range(6))
     from cncc.frontend.modal import Reference
@@ -526,3 +538,4 @@ def _tool_change(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
 
 
 from cncc.frontend import cycles as _cycles  # noqa: E402,F401  (canned cycles and hole patterns register here)
+from cncc.frontend import transforms as _transforms  # noqa: E402,F401  (registers G10, G15/G16, G41/G42, G51 ...)

@@ -19,8 +19,10 @@ ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "bench"))
 from gen import cam_program  # noqa: E402
 
+Lowered = tuple[list[object], list[object]]
 
-def both(text: str, dialect: str = "syntec") -> tuple[tuple[list[object], list[object]], tuple[list[object], list[object]]]:
+
+def both(text: str, dialect: str = "syntec") -> tuple[Lowered, Lowered]:
     d = load_dialect(dialect)
     sm = SourceMap()
     src = sm.add("t.nc", text)

@@ -44,7 +44,8 @@ def test_comments_block_end_and_free_text_after_semicolon() -> None:
 
 def test_two_blocks_on_one_line() -> None:
     blocks, _ = parse("G90 X1; G91 X2;")
-    assert [words(b) for b in blocks] == [[("G", 90.0, False), ("X", 1.0, False)], [("G", 91.0, False), ("X", 2.0, False)]]
+    assert [words(b) for b in blocks] == [[("G", 90.0, False), ("X", 1.0, False)],
+                                          [("G", 91.0, False), ("X", 2.0, False)]]
 
 
 def test_program_structure_and_block_delete() -> None:
