@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 import math
+import re
 from typing import Any
 
 import jsonschema
@@ -180,3 +181,61 @@ def test_text_report_has_totals_and_slowest_blocks() -> None:
     assert "the 10 slowest blocks" in r.output
     assert "tool change" in r.output and "N130" in r.output
     assert "operator-dependent" in r.output
+
+
+def test_annotated_program_compiles_to_the_same_motion() -> None:
+    r = compile_text(PROGRAM, emit="timing", annotate_time=True, opt_level=0)
+    assert r.ok
+    out = r.output.splitlines()
+    src = PROGRAM.splitlines()
+    assert len(out) == len(src)
+    notes = [re.search(r"\(t ([\d.]+) s \+([\d.]+) s\)", ln) for ln in out]
+    for before, after, note in zip(src, out, notes, strict=True):
+        if note is None:
+            assert after == before
+    timed = [n for n in notes if n is not None]
+    assert len(timed) >= 14  # every block from N20 on
+    elapsed = [float(n.group(1)) for n in timed]
+    assert elapsed == sorted(elapsed)
+    total = json.loads(compile_text(PROGRAM, emit="timing", report_format="json", opt_level=0).output)["total_s"]
+    assert elapsed[-1] == pytest.approx(total, abs=1e-3)
+    assert sum(float(n.group(2)) for n in timed) == pytest.approx(total, abs=1e-3 * len(timed))
+    def motion(text: str) -> list[str]:
+        return [ln for ln in compile_text(text, emit="canon").output.splitlines() if "COMMENT(" not in ln]
+
+    assert motion(r.output) == motion(PROGRAM)
+
+
+@pytest.mark.parametrize(("comments", "block_end", "line", "expected"), [
+    (("paren", "slash"), ";", "G01 X1. // go", "G01 X1. (t=1 s) // go"),
+    (("paren", "slash"), ";", "G01 X1.;", "G01 X1. (t=1 s) ;"),
+    (("paren",), "", "G01 X1. (a) Y2.", "G01 X1. (a) Y2. (t=1 s)"),
+    (("semicolon", "paren"), "", "G01 X1. ; go", "G01 X1. ; go t=1 s"),
+    (("semicolon", "paren"), "", "G01 X1.", "G01 X1. ; t=1 s"),
+    (("slash",), ";", "G01 X1.;", "G01 X1.; // t=1 s"),
+])
+def test_annotation_uses_the_dialect_comment_syntax(comments: tuple[str, ...], block_end: str, line: str,
+                                                    expected: str) -> None:
+    from types import SimpleNamespace
+
+    from cncc.backends.timing.annotate import annotate_line
+
+    dialect = SimpleNamespace(comments=comments, block_end=block_end)
+    assert annotate_line(line, "t=1 s", dialect) == expected  # type: ignore[arg-type]
+
+
+def test_progress_bar_only_on_a_terminal() -> None:
+    import io
+
+    from cncc.backends.timing import progress
+
+    class Tty(io.StringIO):
+        def isatty(self) -> bool:
+            return True
+
+    items = list(range(progress.MIN_ITEMS))
+    pipe, tty = io.StringIO(), Tty()
+    assert list(progress.track(items, len(items), "x", pipe)) == items
+    assert pipe.getvalue() == ""
+    assert list(progress.track(items, len(items), "x", tty)) == items
+    assert progress.wanted(len(items), tty) and not progress.wanted(10, tty)

@@ -1,13 +1,13 @@
 """``--annotate-time``: the program with each block's elapsed time as a comment.
 
 Consumes a :class:`TimingReport` (its primary column) and the program text;
-produces the same text with ``(t=12.345 s +1.200 s)`` -- the wall time when the
+produces the same text with ``(t 12.345 s +1.200 s)`` -- the wall time when the
 block's last command ends, and the block's own time -- on every line that produced
 commands, written in the dialect's first comment syntax: parentheses go before any
 ``//`` or ``;`` tail of the block, ``;`` and ``//`` comments go at the end of the
 line (appended to an existing tail comment).  Lines that produced nothing (``%``,
 blank lines, control flow) are left as they were, so the result compiles to the same
-motion.
+motion.  The note holds no ``=``: some controls read ``(NAME=...)`` as a setting.
 """
 
 from __future__ import annotations
@@ -53,7 +53,7 @@ def annotate_time(rep: TimingReport, src: SourceFile, dialect: Dialect) -> str:
     notes: dict[int, str] = {}
     for row, (sid, line) in zip(rep.lines, rep.index.line_keys, strict=True):
         if sid == src.source_id:
-            notes[line] = f"t={to_s(row.elapsed_ns):.3f} s +{to_s(row.times_ns[0]):.3f} s"
+            notes[line] = f"t {to_s(row.elapsed_ns):.3f} s +{to_s(row.times_ns[0]):.3f} s"
     out = []
     for number, raw in enumerate(src.text.splitlines(keepends=True), 1):
         body = raw.rstrip("\r\n")

@@ -15,9 +15,10 @@ LIMIT_COLORS = {
     "axis_velocity": "#8c564b", "step_rate": "#e377c2", "rapid": "#7f7f7f", "centripetal": "#2ca02c",
 }
 CATEGORY_COLORS = {
-    "rapid": "#9e9e9e", "feed": "#1f77b4", "arc": "#17becf", "dwell": "#e6b800", "tool_change": "#d62728",
-    "spindle": "#9467bd", "wait": "#8c564b",
+    "rapid": "#9e9e9e", "feed": "#1f77b4", "arc": "#6baed6", "dwell": "#f0c419", "tool_change": "#00a6a6",
+    "spindle": "#9edae5", "wait": "#7b4173",
 }
+"""Event colours differ from every limit colour: both share the legend of the speed plot."""
 SPEED_COLORS = ("#440154", "#46327e", "#365c8d", "#277f8e", "#1fa187", "#4ac16d", "#a0da39", "#fde725")
 """Slow to fast (viridis)."""
 
