@@ -49,7 +49,7 @@ class EmitOptions:
     line_step: int = 10
 
 
-class _Codes:  # noqa: D101
+class _Codes:
     """Reverse lookup: op -> code name in the target dialect."""
 
     def __init__(self, dialect: Dialect) -> None:
@@ -137,14 +137,10 @@ class GcodeEmitter:
             else:
                 yield self.block([c("length_plus"), f"H{frame.tool_length_index}"])
 
-    def _axes(self, start: Vec6, end: Vec6, force: bool = False) -> list[str]:
-        out = []
-        for i, a in enumerate(AXES):
-            if force or end[i] != start[i] or (i < 3 and not any(end[k] != start[k] for k in range(6))):
-                if i >= 3 and end[i] == start[i]:
-                    continue
-                out.append(f"{a}{self.num(end[i], i)}")
-        return out
+    def _axes(self, start: Vec6, end: Vec6) -> list[str]:
+        """The axes that move (X alone for a move of zero length)."""
+        out = [f"{a}{self.num(end[i], i)}" for i, a in enumerate(AXES) if end[i] != start[i]]
+        return out or [f"X{self.num(end[0], 0)}"]
 
     def _command(self, cmd: Command) -> Iterator[str]:
         c = self.codes

@@ -1,0 +1,86 @@
+"""``--emit=gcode`` in the same dialect re-parses to the same motion."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from cncc.api import compile_commands, compile_text
+from cncc.ir import Arc, Dwell, Linear, Rapid
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+def motion(text: str, **opts: object) -> list[tuple[object, ...]]:
+    cmds, r = compile_commands(text, **opts)
+    assert r.ok, [(d.code, d.message) for d in r.sink]
+    out: list[tuple[object, ...]] = []
+    for c in cmds:
+        if isinstance(c, Rapid):
+            out.append(("rapid", _r(c.end)))
+        elif isinstance(c, Linear):
+            out.append(("feed", _r(c.end), round(c.feed_mm_min, 6)))
+        elif isinstance(c, Arc):
+            out.append(("arc", _r(c.end), _r(c.center), c.turns, c.plane, round(c.feed_mm_min, 6)))
+        elif isinstance(c, Dwell):
+            out.append(("dwell", round(c.seconds, 6)))
+    return out
+
+
+def _r(v: tuple[float, ...]) -> tuple[float, ...]:
+    return tuple(round(x, 6) + 0.0 for x in v)
+
+
+def same(a: object, b: object, tol: float) -> bool:
+    if isinstance(a, tuple) and isinstance(b, tuple):
+        return len(a) == len(b) and all(same(x, y, tol) for x, y in zip(a, b, strict=True))
+    if isinstance(a, float) and isinstance(b, float):
+        return abs(a - b) <= tol * max(1.0, abs(a) * 1e-4)
+    return a == b
+
+
+def roundtrip(text: str) -> None:
+    """Positions agree to the output precision: 1 um in mm, half of 0.0001 inch in inch."""
+    r = compile_text(text, emit="gcode")
+    assert r.ok
+    got, want = motion(r.output), motion(text)
+    assert len(got) == len(want), r.output
+    tol = 1.3e-3 if "G70" in text else 1e-6
+    for g, w in zip(got, want, strict=True):
+        assert same(g, w, tol), (g, w, r.output)
+
+
+def test_example_roundtrips() -> None:
+    roundtrip((ROOT / "examples" / "contour.nc").read_text())
+
+
+def test_modes_units_planes_and_offsets_roundtrip() -> None:
+    roundtrip("G91 G01 X1. Y2. F100\nG90 G18 G02 X5. Z1. I2. K0.5\nG70 G01 X1. F10\n"
+              "G71 G17 G00 X0 Y0\nG04 X1.5\nG03 I1. J0 F20\nM30\n")
+
+
+def test_integer_words_keep_their_meaning() -> None:
+    text = "G00 X5500 Y4000\nG01 X1500 F200\n"
+    r = compile_text(text, emit="gcode")
+    assert "X5.5" in r.output and "X1.5" in r.output  # written with a point, never as 5500
+    roundtrip(text)
+
+
+coord = st.integers(-100000, 100000).map(lambda i: f"{i / 1000:.3f}")
+block = st.one_of(
+    st.tuples(st.sampled_from(["G00", "G01", "G90 G01", "G91 G01", "G90 G00"]),
+              st.lists(st.tuples(st.sampled_from("XYZ"), coord), min_size=1, max_size=3, unique_by=lambda t: t[0]),
+              st.sampled_from(["", " F100.", " F1500."])).map(
+        lambda t: t[0] + " " + " ".join(a + v for a, v in t[1]) + t[2]),
+    st.tuples(st.sampled_from(["G02", "G03"]), coord, coord).map(
+        lambda t: f"G90 {t[0]} I{t[1]} J{t[2]} F200."),
+    st.sampled_from(["G04 X0.5", "G04 P250", "G70", "G71", "M03 S1000", "M05", "T2 M06"]),
+)
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.lists(block, min_size=1, max_size=15))
+def test_generated_programs_roundtrip(blocks: list[str]) -> None:
+    roundtrip("\n".join(["G90 G71 G17 G00 X0 Y0 Z0", *blocks, "M30"]) + "\n")
