@@ -21,6 +21,7 @@ from cncc.ir import Command, Frame, Units, Vec6
 from cncc.ir.machine import Axis, MachineModel
 from cncc.source import NO_SPAN, SourceFile, SourceMap, Span
 
+MACHINE_EMITS = ("timing", "pulses")  # backends that read machine coordinates
 EMIT_KINDS = ("canon", "ir", "gcode", "timing", "pulses", "none")
 DEFAULT_DIALECT = "syntec"
 DEFAULT_MACHINE = "generic-mill"
@@ -44,6 +45,14 @@ class Options:
     block_delete: bool = True
     repair_arcs: bool = False
     report_format: str = "text"
+    # macros and subprograms (cncc/frontend/macro): -D, -I, -M, -E, --max-steps, --io, --write-dir
+    defines: dict[int, float] = field(default_factory=dict)
+    include_dirs: list[str] = field(default_factory=list)
+    list_deps: bool = False
+    expand: bool = False
+    max_steps: int = 5_000_000
+    io_file: str | None = None
+    write_dir: str | None = None
     compare: str = ""  # timing report columns: "O0,O1,O2" or machine names (NAME@O1)
     annotate_time: bool = False  # timing: the program with elapsed times as comments
 
@@ -111,6 +120,25 @@ def resolve_machine(name: str, sink: DiagnosticSink) -> MachineModel | None:
     return model
 
 
+def apply_dialect_to_machine(machine: MachineModel, opts: Options, sink: DiagnosticSink) -> MachineModel:
+    """The controller's rapid type (SYNTEC Pr411, SZGH P9_D6) overrides the machine's
+    rapid mode when the user sets it (``-frapid_type=...``); the dialect's own default
+    applies only to the machine model that emulates that controller."""
+    from dataclasses import replace
+
+    from cncc.ir.machine import RapidMode
+
+    value = opts.dialect_options.get("rapid_type")
+    if value is None:
+        return machine
+    try:
+        mode = RapidMode(str(value))
+    except ValueError:
+        sink.emit(dg.BAD_OPTION, NO_SPAN, f"-frapid_type={value}: expected 'interpolated' or 'independent'")
+        return machine
+    return replace(machine, rapid_mode=mode)
+
+
 def default_machine() -> MachineModel:
     return MachineModel("generic-mill", tuple(Axis(a) for a in "XYZ"))
 
@@ -137,14 +165,56 @@ def load_tables(opts: Options, sink: DiagnosticSink) -> tuple[dict[int, Vec6], d
 
 # ---- pipeline ---------------------------------------------------------------------------
 def front_end(src: SourceFile, dialect: Dialect, machine: MachineModel, opts: Options,
-              sink: DiagnosticSink) -> Iterator[Command]:
+              sink: DiagnosticSink, sources: SourceMap | None = None, deps: list[str] | None = None
+              ) -> Iterator[Command]:
     from cncc.frontend import InterpOptions, lower
 
     work, lengths, radii = load_tables(opts, sink)
     refs = tuple(tuple(r) + (0.0,) * (6 - len(r)) for r in machine.reference_positions_mm) or ((0.0,) * 6,)
     iopts = InterpOptions(work_offsets_mm=work, tool_lengths_mm=lengths, tool_radii_mm=radii,
                           reference_mm=refs, block_delete=opts.block_delete, strict=opts.strict)  # type: ignore[arg-type]
-    return lower(src, dialect, sink, iopts)
+    return lower(src, dialect, sink, iopts, macro_options(opts, sink, sources, deps))
+
+
+def macro_options(opts: Options, sink: DiagnosticSink, sources: SourceMap | None,
+                  deps: list[str] | None = None) -> Any:
+    """The macro executor's options: -D presets, -I folders, --max-steps, --io, --write-dir."""
+    from cncc.frontend.macro import MacroOptions
+    from cncc.frontend.macro.iofile import IoFileError, read_io
+
+    io: dict[str, float] = {}
+    if opts.io_file:
+        try:
+            io = read_io(opts.io_file)
+        except IoFileError as exc:
+            sink.emit(dg.MACRO_BAD_IO_FILE, NO_SPAN, str(exc))
+    private = SourceMap()
+
+    def load(path: str) -> SourceFile | None:
+        if sources is not None:
+            return read_input(path, sources, sink)
+        src = read_input(path, private, sink)  # no shared map: ids far from the caller's
+        return None if src is None else SourceFile(1_000_000 + src.source_id, src.name, src.text)
+
+    protected = tuple(os.path.realpath(p) for p in opts.inputs if p != "-")
+    return MacroOptions(presets=dict(opts.defines), include_dirs=tuple(opts.include_dirs), max_steps=opts.max_steps,
+                        io_inputs=io, write_dir=opts.write_dir, load_source=load, protected_paths=protected,
+                        files_used=deps if deps is not None else [])
+
+
+def with_line_map(cmds: Iterable[Command], sources: SourceMap) -> Iterator[Command]:
+    """-E: a comment naming the source line before the commands of each new line."""
+    from cncc.ir import Comment
+
+    last: tuple[int, int] | None = None
+    for cmd in cmds:
+        src = sources.get(cmd.span.source_id)
+        if src is not None and not isinstance(cmd, Comment):
+            key = (src.source_id, src.position(cmd.span.start).line)
+            if key != last:
+                last = key
+                yield Comment(cmd.span, cmd.frame, f"{src.name}:{key[1]}")
+        yield cmd
 
 
 def path_passes(cmds: Iterable[Command], dialect: Dialect, machine: MachineModel, opts: Options,
@@ -157,9 +227,32 @@ def path_passes(cmds: Iterable[Command], dialect: Dialect, machine: MachineModel
     ctx = PassContext(sink=sink, dialect=dialect, machine=machine)
     tol_abs = float(dialect.option("arc_radius_tolerance_mm", ArcCheck.abs_tol_mm))
     tol_rel = float(dialect.option("arc_radius_tolerance_rel", ArcCheck.rel_tol))
-    passes = [ExpandCycles(),
+    passes = [ExpandCycles(), *frame_passes(dialect, machine_coords=opts.emit in MACHINE_EMITS),
               ArcCheck(abs_tol_mm=max(tol_abs, ArcCheck.abs_tol_mm), rel_tol=tol_rel, repair=opts.repair_arcs)]
     return run_pipeline(passes, cmds, ctx)
+
+
+def frame_passes(dialect: Dialect, machine_coords: bool) -> list[Any]:
+    """Polar, scaling, mirror, rotation (program coordinates); then, for the planner's backends,
+    offsets and tool length (machine coordinates); then cutter compensation.
+
+    The canon trace and G-code keep program coordinates: they report offsets and tool length
+    themselves, so ``machine_coords`` is False for them.
+    """
+    from cncc.passes.cutter_comp import CutterComp
+    from cncc.passes.mirror import MirrorPass
+    from cncc.passes.polar import PolarPass
+    from cncc.passes.rotation import RotationPass
+    from cncc.passes.scaling import ScalingPass
+    from cncc.passes.to_machine import ToMachine
+    from cncc.passes.tool_length import ToolLength
+
+    out: list[Any] = [PolarPass(), ScalingPass(), MirrorPass(), RotationPass()]
+    if machine_coords:
+        out += [ToMachine(), ToolLength()]
+    out.append(CutterComp(outer_corner=str(dialect.option("comp_outer_corner", "intersection")),
+                          lookahead=int(dialect.option("comp_lookahead", 2))))
+    return out
 
 
 def compile_files(opts: Options, stdin: TextIO | None = None) -> Result:
@@ -173,6 +266,7 @@ def compile_files(opts: Options, stdin: TextIO | None = None) -> Result:
     machine = resolve_machine(opts.machine, sink)
     if dialect is None or machine is None:
         return result
+    machine = apply_dialect_to_machine(machine, opts, sink)
     chunks: list[str] = []
     for path in opts.inputs or ["-"]:
         src = read_input(path, sources, sink, stdin)
@@ -180,7 +274,15 @@ def compile_files(opts: Options, stdin: TextIO | None = None) -> Result:
             continue
         if not src.text.strip():
             sink.emit(dg.EMPTY_PROGRAM, Span(src.source_id, 0, 0), "the program contains no blocks")
-        cmds = path_passes(front_end(src, dialect, machine, opts, sink), dialect, machine, opts, sink)
+        if opts.list_deps:  # -M: run the front end, list the subprogram files it loaded
+            deps: list[str] = []
+            for _ in front_end(src, dialect, machine, opts, sink, sources, deps):
+                pass
+            chunks.append(f"{src.name}: {' '.join(dict.fromkeys(deps))}".rstrip() + "\n")
+            continue
+        cmds = path_passes(front_end(src, dialect, machine, opts, sink, sources), dialect, machine, opts, sink)
+        if opts.expand:
+            cmds = with_line_map(cmds, sources)
         if opts.syntax_only:
             for _ in cmds:
                 pass
@@ -213,8 +315,9 @@ def run_backend(cmds: Iterator[Command], src: SourceFile, sources: SourceMap, di
         return emit_gcode(cmds, target)
     if opts.emit == "timing":
         from cncc.backends.timing import timing_report
+        from cncc.backends.timing.progress import track_source
 
-        cmd_list = list(cmds)
+        cmd_list = list(track_source(cmds, len(src.text), src.source_id))
         runs = timing_runs(cmd_list, machine, opts, sink)
         color = opts.output in (None, "-") and sys.stdout.isatty()
         return timing_report(cmd_list, runs, src, sources, dialect, opts.report_format, sink,
@@ -243,6 +346,7 @@ def plan_trajectory(cmds: list[Command], machine: MachineModel, level: int, sink
 def timing_runs(cmds: list[Command], machine: MachineModel, opts: Options, sink: DiagnosticSink) -> list[Any]:
     """One planned Run per report column (``--compare``, else -O<level> and the nominal estimate)."""
     from cncc.backends.timing import Run, default_columns, parse_compare
+    from cncc.backends.timing.progress import stage
 
     specs = parse_compare(opts.compare, opts.opt_level) if opts.compare else default_columns(opts.opt_level)
     if isinstance(specs, str):
@@ -253,7 +357,8 @@ def timing_runs(cmds: list[Command], machine: MachineModel, opts: Options, sink:
         model = machine if spec.machine is None else resolve_machine(spec.machine, sink)
         if model is None:
             return []
-        traj, how = plan_trajectory(cmds, model, spec.level, sink)
+        with stage(f"planning {spec.label} on {model.name}", len(cmds)):
+            traj, how = plan_trajectory(cmds, model, spec.level, sink)
         runs.append(Run(spec.label, model, spec.level, traj, how, nominal=spec.level == 0))
     return runs
 

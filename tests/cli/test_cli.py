@@ -106,3 +106,15 @@ def test_main_in_process_does_not_raise_on_binary(capsys: pytest.CaptureFixture[
     finally:
         sys.stdin = sys_stdin
     assert "error[" in capsys.readouterr().err
+
+
+def test_rapid_type_option_reaches_the_machine() -> None:
+    from cncc.driver import Options, apply_dialect_to_machine, default_machine
+    from cncc.diagnostics import DiagnosticSink
+    from cncc.ir.machine import RapidMode
+
+    sink = DiagnosticSink()
+    m = apply_dialect_to_machine(default_machine(), Options(dialect_options={"rapid_type": "independent"}), sink)
+    assert m.rapid_mode is RapidMode.INDEPENDENT and not list(sink)
+    apply_dialect_to_machine(default_machine(), Options(dialect_options={"rapid_type": "dogleg"}), sink)
+    assert [d.code for d in sink] == ["E0904"]
