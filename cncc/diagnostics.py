@@ -97,6 +97,8 @@ CYCLE_SPINDLE = _define("W0414", W, "a tapping cycle starts with the spindle off
 CYCLE_UNKNOWN = _define("E0415", E, "the dialect names a cycle kind cncc does not know")
 CYCLE_WORDS_NOT_STORED = _define("W0416", W, "cycle data in a block that does not drill is not stored")
 CYCLE_LONG_DWELL = _define("W0417", W, "a cycle dwell longer than a minute (is P in the right unit?)")
+CYCLE_BACK_BORE_SWAPPED = _define("W0418", W, "a back bore with R above Z: the tool starts at the lower level")
+CYCLE_RETURN_IN_HOLE = _define("E0419", E, "the level a cycle returns to is inside the hole (initial level too low)")
 
 # --- E03xx: macros, variables and subprograms (cncc/frontend/macro) ----------------
 MACRO_STEP_BUDGET = _define("E0301", E, "the program ran past the step budget (an endless loop or recursion?)")

@@ -195,10 +195,23 @@ def _stored(it: Interpreter, ctx: BlockContext, data: CycleData) -> CycleData | 
     if pitch_letter and data.kind in _TAPS and (w := words.get(pitch_letter)) is not None:
         pitch = abs(it.reader.length_mm(w))
     new = replace(data, r_mm=r_mm, bottom_mm=bottom, q_mm=q_mm, dwell_s=dwell, pitch_mm=pitch)
-    return new if check_levels(it, ctx, new) else None
+    new = _back_bore_order(it, ctx, new)
+    return new if check_levels(it, ctx, new, warn="R" in words) else None
 
 
-def check_levels(it: Interpreter, ctx: BlockContext, d: CycleData) -> bool:
+def _back_bore_order(it: Interpreter, ctx: BlockContext, d: CycleData) -> CycleData:
+    """Option ``cycle_back_bore_order = "lower_first"``: a G87 with R above Z starts at the lower one."""
+    if (d.kind is not CycleKind.BACK_BORE or d.r_mm is None or d.bottom_mm is None or d.r_mm <= d.bottom_mm
+            or option(it, "cycle_back_bore_order", "strict") != "lower_first"):
+        return d
+    it.sink.emit(dg.CYCLE_BACK_BORE_SWAPPED, ctx.span,
+                 f"{d.code.name}: R {d.r_mm:g} is above {AXES[d.plane.normal]}{d.bottom_mm:g}; the tool goes down "
+                 f"to {d.bottom_mm:g} and cuts up to {d.r_mm:g}")
+    return replace(d, r_mm=d.bottom_mm, bottom_mm=d.r_mm)
+
+
+def check_levels(it: Interpreter, ctx: BlockContext, d: CycleData, warn: bool = False) -> bool:
+    """Errors for missing or inverted levels and pecks; ``warn``: also flag R above the initial level."""
     axis = AXES[d.plane.normal]
     if d.r_mm is None:
         it.emit_error(dg.CYCLE_NO_R, ctx.span, f"{d.code.name} needs an R level (none since the cycle began)")
@@ -215,7 +228,7 @@ def check_levels(it: Interpreter, ctx: BlockContext, d: CycleData) -> bool:
         it.emit_error(dg.CYCLE_R_PAST_BOTTOM, ctx.span,
                       f"{d.code.name}: R {d.r_mm:g} is not above the bottom {axis}{d.bottom_mm:g}")
         return False
-    elif d.r_mm > d.initial_mm:
+    elif d.r_mm > d.initial_mm and warn:
         it.sink.emit(dg.CYCLE_R_ABOVE_INITIAL, ctx.span,
                      f"R level {d.r_mm:g} is above the initial level {d.initial_mm:g}")
     if d.kind in _PECKS and not d.q_mm:
@@ -243,6 +256,11 @@ def emit_cycle(it: Interpreter, ctx: BlockContext, d: CycleData, holes: tuple[Ve
     if shift is None:
         return
     retract = retract_level(it, d)
+    if (retract <= d.bottom_mm) if d.kind is not CycleKind.BACK_BORE else (retract < d.bottom_mm):
+        it.emit_error(dg.CYCLE_RETURN_IN_HOLE, ctx.span,
+                      f"{d.code.name}: the return level {retract:g} is not above the hole ({AXES[d.plane.normal]}"
+                      f"{d.bottom_mm:g}); move the tool up before the cycle or use G99")
+        return
     n = d.plane.normal
     placed = tuple(_with(h, n, retract) for h in holes)
     frame = it.frame
