@@ -58,7 +58,8 @@ def round_corners(run: PathRun, limits: AxisLimits, machine: MachineModel) -> Pa
     e2 /= np.maximum(np.linalg.norm(e2, axis=1), 1e-300)[:, None]
     a_min = path_limit(limits.amax_mm_s2, np.abs(u_in) + np.abs(e2))
     v_c = np.sqrt(NORMAL_SHARE * a_min * np.maximum(radius, 1e-12))
-    chord = np.maximum(1.02 * v_c * machine.interpolation_period_s, 1e-5)
+    t = machine.interpolation_period_s
+    chord = np.maximum(1.02 * v_c * t + 2.2 * t * t * a_min, 1e-5)
     n_b = np.where(ok, np.clip(np.ceil(radius * theta / chord), 1, MAX_BLEND_CHORDS), 0).astype(np.int64)
     return _rebuild(run, pts, u_in, e2, d_t, radius, theta, n_b)
 

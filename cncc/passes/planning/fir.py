@@ -4,8 +4,8 @@ Consumes :class:`Segments` of a run (rest to rest); produces constant-jerk
 :class:`Phases` on the path coordinate.
 
 1. ``Tf = max_k acap_k / jcap_k``.  Every speed cap (segment caps and vertex caps) is
-   widened by ``v_cap * Tf / 2`` on each side, every acceleration cap by
-   ``D_a = max(vcap) * Tf``; the elementary intervals between all region ends get the
+   widened by ``v_cap * Tf / 2`` on each side, every acceleration cap by the distance
+   travelled in ``Tf`` (bounded from the widened speed caps); the elementary intervals between all region ends get the
    minimum of the caps covering them (:func:`cover_min`).
 2. TOPP on these intervals (``profile.py``): bang-bang acceleration.
 3. Wherever the acceleration flips from ``+A`` to ``-A`` with less than ``Tf`` of
@@ -24,7 +24,7 @@ import numpy as np
 
 from cncc.ir.trajectory import FloatArray, Limit
 from cncc.passes.planning.profile import Phases, boundary_speeds, trapezoids
-from cncc.passes.planning.ranges import cover_min
+from cncc.passes.planning.ranges import cover_min, range_max, range_min
 from cncc.passes.planning.segments import Segments
 
 MAX_PEAK_ROUNDS = 12
@@ -51,12 +51,11 @@ def _topp(seg: Segments, tf: float, extra: FloatArray) -> Phases:
     xv, vv = seg.s0[1:-1][binding], inner[binding]
     if extra.size:
         xv, vv = np.concatenate([xv, extra[:, 0]]), np.concatenate([vv, extra[:, 1]])
-    d_a = float(seg.vcap.max()) * tf
+    v_near = np.maximum(np.concatenate([seg.vcap[:1], seg.vcap]), np.concatenate([seg.vcap, seg.vcap[-1:]]))
     v_lo = np.concatenate([seg.s0[:-1] - seg.vcap * tf / 2, xv - vv * tf / 2])
     v_hi = np.concatenate([seg.s0[1:] + seg.vcap * tf / 2, xv + vv * tf / 2])
     v_val = np.concatenate([seg.vcap, vv])
-    a_lo, a_hi = seg.s0[:-1] - d_a, seg.s0[1:] + d_a
-    ends = np.clip(np.concatenate([seg.s0, v_lo, v_hi, a_lo, a_hi]), 0.0, total)
+    ends = np.clip(np.concatenate([seg.s0, v_lo, v_hi, seg.s0 - v_near * tf, seg.s0 + v_near * tf]), 0.0, total)
     bp = np.unique(ends)
     n = bp.size - 1
 
@@ -66,7 +65,7 @@ def _topp(seg: Segments, tf: float, extra: FloatArray) -> Phases:
         return cover_min(n, lo_i, hi_i, val)
 
     vcap = cover(v_lo, v_hi, v_val)
-    acap = cover(a_lo, a_hi, seg.acap)
+    acap = _window_accel(seg, bp, vcap, tf)
     length = np.diff(bp)
     xcap = np.full(n + 1, np.inf)
     xcap[0] = xcap[-1] = 0.0
@@ -74,6 +73,22 @@ def _topp(seg: Segments, tf: float, extra: FloatArray) -> Phases:
     x = boundary_speeds(length, vcap, acap, xcap)
     limit = np.where(vcap < seg.vcap[k] * (1 - 1e-9), Limit.CORNER, seg.vlim[k]).astype(np.int8)
     return trapezoids(length, vcap, acap, x, limit, int(Limit.ACCEL))
+
+
+def _window_accel(seg: Segments, bp: FloatArray, vcap: FloatArray, tf: float) -> FloatArray:
+    """Acceleration cap of each interval: min over the segments reachable within ``Tf``.
+
+    ``D`` (distance travelled in ``Tf``) is bounded by ``Tf`` times the largest speed cap
+    within ``D``; iterating from ``D = Tf * max(vcap)`` keeps a valid, shrinking bound.
+    """
+    dist = np.full(vcap.size, tf * float(vcap.max()))
+    for _ in range(4):
+        lo = np.searchsorted(bp[1:], bp[:-1] - dist, side="right")
+        hi = np.searchsorted(bp[:-1], bp[1:] + dist, side="left")
+        dist = np.minimum(dist, tf * range_max(vcap, lo, hi))
+    lo = np.searchsorted(seg.s0[1:], bp[:-1] - dist, side="right")
+    hi = np.searchsorted(seg.s0[:-1], bp[1:] + dist, side="left")
+    return range_min(seg.acap, lo, hi)
 
 
 def _short_peaks(ph: Phases, tf: float) -> FloatArray:

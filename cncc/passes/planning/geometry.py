@@ -167,7 +167,8 @@ def _arc_chord_max(cmd: Arc, feed_mm_s: float, machine: MachineModel, limits: Ax
     radius = math.hypot(cmd.start[f] - cmd.center[f], cmd.start[s] - cmd.center[s])
     a_plane = float(min(limits.amax_mm_s2[f], limits.amax_mm_s2[s]))
     v = min(feed_mm_s, math.sqrt(NORMAL_SHARE * a_plane * max(radius, 1e-9)))
-    return max(1.02 * v * machine.interpolation_period_s, 1e-4)
+    t = machine.interpolation_period_s
+    return max(1.02 * v * t + 2.2 * t * t * a_plane, 1e-4)
 
 
 def arc_points(cmd: Arc, sag_mm: float, chord_max_mm: float = math.inf) -> FloatArray:
