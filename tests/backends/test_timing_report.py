@@ -239,3 +239,10 @@ def test_progress_bar_only_on_a_terminal() -> None:
     assert pipe.getvalue() == ""
     assert list(progress.track(items, len(items), "x", tty)) == items
     assert progress.wanted(len(items), tty) and not progress.wanted(10, tty)
+    cmds, _ = compile_commands(PROGRAM)
+    assert list(progress.track_source(iter(cmds), 10**8, 0, pipe)) == cmds
+    assert list(progress.track_source(iter(cmds), 10**8, 0, tty)) == cmds
+    with progress.stage("planning", 10**6, pipe):
+        pass
+    assert pipe.getvalue() == ""
+    assert "reading the program" in tty.getvalue()

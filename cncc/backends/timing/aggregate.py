@@ -143,34 +143,44 @@ def column(run: Run, cmds: Sequence[Command], index: ProgramIndex) -> Column:
     return Column(run, motion_ns, event_ns, line_ns, line_limit, cmd_ns, category_ns, tool_ns, operator_ns, events)
 
 
-def _dominant(values: dict[str, int], fallback: str) -> str:
-    best = max(values.items(), key=lambda kv: kv[1], default=(fallback, 0))
-    return best[0] if best[1] > 0 else fallback
+def _dominant(ns: object, names: tuple[str, ...]) -> list[str]:
+    """Per row of ``ns`` (shape ``(L, len(names))``), the name with the most time ("" if none)."""
+    import numpy as np
+
+    arr = np.asarray(ns)
+    if arr.shape[0] == 0:
+        return []
+    best = arr.argmax(axis=1)
+    has = arr.max(axis=1) > 0
+    return [names[b] if h else "" for b, h in zip(best.tolist(), has.tolist(), strict=True)]
 
 
 def line_rows(columns: list[Column], index: ProgramIndex, sources: SourceMap) -> list[LineRow]:
     import numpy as np
 
     primary = columns[0]
-    elapsed = np.cumsum(primary.cmd_ns)
-    line_end = np.zeros(len(index.line_keys), dtype=np.int64)
-    np.maximum.at(line_end, index.cmd_line, elapsed)
-    cat_ns = np.zeros((len(index.line_keys), len(CATEGORIES)), dtype=np.int64)
+    n_lines = len(index.line_keys)
+    line_end = np.zeros(n_lines, dtype=np.int64)
+    np.maximum.at(line_end, index.cmd_line, np.cumsum(primary.cmd_ns))
+    cat_ns = np.zeros((n_lines, len(CATEGORIES)), dtype=np.int64)
     has_cat = index.cmd_cat >= 0
     np.add.at(cat_ns, (index.cmd_line[has_cat], index.cmd_cat[has_cat]), primary.cmd_ns[has_cat])
+    categories = _dominant(cat_ns, CATEGORIES)
+    limited_by = _dominant(primary.line_limit_ns, LIMIT_KEYS)
+    times = list(zip(*(c.line_ns.tolist() for c in columns), strict=True))
+    limit_rows = primary.line_limit_ns.tolist()
+    ends = line_end.tolist()
     rows = []
     for k, (sid, line) in enumerate(index.line_keys):
         src = sources.get(sid)
         text = src.line_text(line) if src is not None else ""
         m = _N_WORD.match(text)
-        limits = {key: int(v) for key, v in zip(LIMIT_KEYS, primary.line_limit_ns[k], strict=True) if v}
-        cats = {cat: int(v) for cat, v in zip(CATEGORIES, cat_ns[k], strict=True)}
         rows.append(LineRow(
             index=k, file=src.name if src is not None else "<generated>", line=line,
-            n=m.group(1).replace(" ", "").upper() if m else "", text=text.strip(),
-            times_ns=tuple(int(c.line_ns[k]) for c in columns), category=_dominant(cats, ""),
-            limited_by=_dominant(limits, ""), limits_ns=limits, elapsed_ns=int(line_end[k]),
-            operator_dependent=k in index.op_dependent_lines))
+            n=m.group(1).replace(" ", "").upper() if m else "", text=text.strip(), times_ns=times[k],
+            category=categories[k], limited_by=limited_by[k],
+            limits_ns={key: v for key, v in zip(LIMIT_KEYS, limit_rows[k], strict=True) if v},
+            elapsed_ns=ends[k], operator_dependent=k in index.op_dependent_lines))
     return rows
 
 

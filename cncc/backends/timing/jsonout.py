@@ -76,5 +76,10 @@ def report_dict(rep: TimingReport) -> dict[str, Any]:
     }
 
 
+INDENT_MAX_LINES = 2_000
+"""Larger reports are written compactly (indenting makes json use its slow Python encoder)."""
+
+
 def render_json(rep: TimingReport) -> str:
-    return json.dumps(report_dict(rep), indent=1) + "\n"
+    indent = 1 if len(rep.lines) <= INDENT_MAX_LINES else None
+    return json.dumps(report_dict(rep), indent=indent) + "\n"

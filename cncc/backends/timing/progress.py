@@ -1,17 +1,28 @@
-"""A progress bar for long timing runs, on standard error and only when it is a terminal.
+"""Progress display for long timing runs, on standard error and only when it is a terminal.
 
-``track(items, total, label)`` yields the items unchanged; when ``total`` is at least
-:data:`MIN_ITEMS` and ``sys.stderr`` is a TTY it also draws a rich progress bar (rich
-is imported only then).  Reports written to pipes and files never see it.
+``track(items, total, label)`` and ``track_source(cmds, ...)`` yield their items
+unchanged; ``stage(label, size)`` wraps a step.  When the work is at least
+:data:`MIN_ITEMS` items and ``sys.stderr`` is a TTY they also draw a rich progress bar
+or spinner (rich is imported only then).  Pipes, files and tests never see them.
 """
 
 from __future__ import annotations
 
 import sys
 from collections.abc import Iterable, Iterator
-from typing import TextIO, TypeVar
+from contextlib import contextmanager
+from typing import Protocol, TextIO, TypeVar
+
+from cncc.source import Span
+
+
+class _Spanned(Protocol):
+    @property
+    def span(self) -> Span: ...
+
 
 T = TypeVar("T")
+C = TypeVar("C", bound=_Spanned)
 MIN_ITEMS = 50_000
 """Below this many items the work takes well under a second: no bar."""
 
@@ -38,3 +49,37 @@ def track(items: Iterable[T], total: int, label: str, stream: TextIO | None = No
             if k % step == 0:
                 bar.update(task, completed=k)
         bar.update(task, completed=total)
+
+
+def track_source(cmds: Iterable[C], text_length: int, source_id: int, stream: TextIO | None = None) -> Iterator[C]:
+    """Yield ``cmds`` (streamed from the front end) with a bar over the source text read so far.
+
+    ``text_length`` is the length of the program text; the bar follows the span start of
+    each command of source ``source_id`` (subprogram commands leave it where it is).
+    """
+    if not wanted(text_length // 20, stream):  # about 20 characters a block
+        yield from cmds
+        return
+    from rich.console import Console
+    from rich.progress import Progress
+
+    console = Console(file=stream if stream is not None else sys.stderr)
+    with Progress(console=console, transient=True) as bar:
+        task = bar.add_task("reading the program", total=text_length)
+        for k, c in enumerate(cmds):
+            yield c
+            if k % 2000 == 0 and c.span.source_id == source_id:
+                bar.update(task, completed=c.span.start)
+
+
+@contextmanager
+def stage(label: str, size: int, stream: TextIO | None = None) -> Iterator[None]:
+    """A spinner with ``label`` while a long step runs (``size``: items it works on)."""
+    if not wanted(size, stream):
+        yield
+        return
+    from rich.console import Console
+
+    console = Console(file=stream if stream is not None else sys.stderr)
+    with console.status(label):
+        yield
