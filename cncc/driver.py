@@ -10,9 +10,9 @@ from __future__ import annotations
 import os
 import sys
 import tempfile
-from collections.abc import Callable, Iterable, Iterator
+from collections.abc import Iterable, Iterator
 from dataclasses import dataclass, field
-from typing import IO, Any, TextIO
+from typing import Any, TextIO
 
 from cncc import diagnostics as dg
 from cncc.diagnostics import DiagnosticSink
@@ -55,8 +55,6 @@ class Options:
     write_dir: str | None = None
     compare: str = ""  # timing report columns: "O0,O1,O2" or machine names (NAME@O1)
     annotate_time: bool = False  # timing: the program with elapsed times as comments
-    pulse_format: str = "vcd"  # --emit=pulses: vcd | csv | npz | queue
-    pulse_mode: str = "exact"  # --emit=pulses: exact | interp (SZGH 2 ms interpolation)
 
 
 @dataclass(slots=True)
@@ -338,8 +336,6 @@ def run_backend(cmds: Iterator[Command], src: SourceFile, sources: SourceMap, di
         color = opts.output in (None, "-") and sys.stdout.isatty()
         return timing_report(cmd_list, runs, src, sources, dialect, opts.report_format, sink,
                              annotate=opts.annotate_time, color=color)
-    if opts.emit == "pulses":
-        return pulse_backend(cmds, machine, opts, sink)
     if opts.emit == "none":
         for _ in cmds:
             pass
@@ -359,51 +355,6 @@ def plan_trajectory(cmds: list[Command], machine: MachineModel, level: int, sink
     from cncc.passes.plan import plan_commands
 
     return plan_commands(cmds, machine, level=level, sink=sink), f"planned -O{level}"
-
-
-PULSE_BINARY_FORMATS = ("npz",)
-
-
-def writes_own_output(opts: Options) -> bool:
-    """True when the backend streams straight into ``opts.output`` (pulses to a file)."""
-    return opts.emit == "pulses" and opts.output not in (None, "-")
-
-
-def pulse_option_problem(opts: Options, formats: tuple[str, ...], modes: tuple[str, ...]) -> str:
-    """What is wrong with the --emit=pulses options ('' when nothing)."""
-    to_stdout = opts.output in (None, "-")
-    if opts.pulse_format not in formats:
-        return f"unknown --pulse-format={opts.pulse_format} (choose from {', '.join(formats)})"
-    if opts.pulse_mode not in modes:
-        return f"unknown --pulse-mode={opts.pulse_mode} (choose from {', '.join(modes)})"
-    if opts.pulse_format in PULSE_BINARY_FORMATS and to_stdout:
-        return f"--pulse-format={opts.pulse_format} is binary: name the output file with -o FILE"
-    if not to_stdout and len(opts.inputs) > 1:
-        return "--emit=pulses -o FILE takes one input program"
-    return ""
-
-
-def pulse_backend(cmds: Iterator[Command], machine: MachineModel, opts: Options, sink: DiagnosticSink
-                  ) -> Iterator[str]:
-    """--emit=pulses: plan at -O<level>, then step/dir pulses; text to stdout, or streamed into -o FILE."""
-    import io
-
-    from cncc.backends.pulses import FORMATS, MODES, generate_pulses, write_pulses
-
-    fmt, to_stdout = opts.pulse_format, opts.output in (None, "-")
-    problem = pulse_option_problem(opts, FORMATS, MODES)
-    cmd_list = list(cmds)
-    if problem:
-        sink.emit(dg.BAD_OPTION, NO_SPAN, problem)
-        return iter(())
-    traj, _ = plan_trajectory(cmd_list, machine, opts.opt_level, sink)
-    chunks = generate_pulses(traj, machine, mode=opts.pulse_mode, spans=[c.span for c in cmd_list], sink=sink)
-    if to_stdout:
-        buf = io.StringIO()
-        write_pulses(chunks, fmt, buf)
-        return iter((buf.getvalue(),))
-    write_stream(opts.output or "-", opts.inputs, sink, lambda fh: write_pulses(chunks, fmt, fh))
-    return iter(())
 
 
 def timing_runs(cmds: list[Command], machine: MachineModel, opts: Options, sink: DiagnosticSink) -> list[Any]:
@@ -427,31 +378,6 @@ def timing_runs(cmds: list[Command], machine: MachineModel, opts: Options, sink:
 
 
 # ---- outputs ---------------------------------------------------------------------------------
-def write_stream(path: str, inputs: list[str], sink: DiagnosticSink, write: Callable[[IO[bytes]], Any]) -> bool:
-    """Stream ``write(binary file)`` into ``path`` atomically; nothing is kept if errors were reported."""
-    real = os.path.realpath(path)
-    if any(inp != "-" and os.path.exists(inp) and os.path.realpath(inp) == real for inp in inputs):
-        sink.emit(dg.OUTPUT_IS_INPUT, NO_SPAN, f"refusing to overwrite the input file {path}")
-        return False
-    try:
-        fd, tmp = tempfile.mkstemp(prefix=".cncc-", suffix=".tmp", dir=os.path.dirname(real) or ".")
-        try:
-            with os.fdopen(fd, "wb") as fh:
-                write(fh)
-            if sink.has_errors:
-                os.unlink(tmp)
-                return False
-            os.replace(tmp, real)
-        except BaseException:
-            if os.path.exists(tmp):
-                os.unlink(tmp)
-            raise
-    except OSError as exc:
-        sink.emit(dg.CANNOT_WRITE, NO_SPAN, f"cannot write {path}: {exc.strerror or exc}")
-        return False
-    return True
-
-
 def write_output(text: str, path: str | None, inputs: list[str], sink: DiagnosticSink,
                  stdout: TextIO | None = None) -> bool:
     """Write ``text`` to ``path`` atomically (``-``/None: stdout); never over an input."""

@@ -196,7 +196,7 @@ def _stored(it: Interpreter, ctx: BlockContext, data: CycleData) -> CycleData | 
         pitch = abs(it.reader.length_mm(w))
     new = replace(data, r_mm=r_mm, bottom_mm=bottom, q_mm=q_mm, dwell_s=dwell, pitch_mm=pitch)
     new = _back_bore_order(it, ctx, new)
-    return new if check_levels(it, ctx, new, warn="R" in words) else None
+    return new if check_levels(it, ctx, new, warn=new.r_mm != data.r_mm) else None
 
 
 def _back_bore_order(it: Interpreter, ctx: BlockContext, d: CycleData) -> CycleData:

@@ -286,3 +286,16 @@ def test_szgh_peck_tapping_modes(p6: str, backs_to_r: bool) -> None:
                   cycle_tap_clearance_mm=2.0)
     feeds = [float(tok[3]) for tok in t if tok[0] == "F"]  # type: ignore[arg-type]
     assert feeds == ([-15.0, -5.0, -20.0, -5.0] if backs_to_r else [-15.0, -13.0, -20.0, -5.0])
+
+
+def test_e002_51_g152_bolt_circle_macro_from_the_cycle_library() -> None:
+    """ProgramG152 (shipped in cncc/dialects/szgh_cycles) drills 5 holes every 45 degrees."""
+    text = "G90 G92 X0 Y0 Z4\nG152 X100 Y50 R10 Z-20.0 F20 I40.0 A0 B45.0 H5\nM30\n"
+    t, diags = tokens(text)
+    feeds = [tok for tok in t if tok[0] == "F"]
+    want = [(140.0, 50.0), (128.284, 78.284), (100.0, 90.0), (71.716, 78.284), (60.0, 50.0)]
+    assert len(feeds) == 5
+    for (_, x, y, z), (wx, wy) in zip(feeds, want, strict=True):
+        assert (x, y, z) == pytest.approx((wx, wy, -20.0), abs=1e-3)
+    assert t[-1] == ("R", 60.0, 50.0, 4.0)  # G98: back to the initial level Z4 after the last hole
+    assert diags.count("W0410") == 1  # R10 above the initial level, said once
