@@ -1,0 +1,148 @@
+"""Closed-form checks of the planner (expected values computed here, independently)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from cncc.diagnostics import DiagnosticSink
+from cncc.ir.trajectory import Trajectory
+from cncc.machines import effective_corner_rule, load_machine
+from cncc.passes.plan import plan_commands
+from cncc.passes.verify import verify_trajectory
+from tests.passes._motion import arc, dwell, line, polyline, rapid
+
+GENERIC = load_machine("generic-mill")
+SZGH = load_machine("szgh-990mdb")
+A_X, J_X = 1500.0, 50000.0  # generic-mill X axis
+
+
+def plan(cmds: list, machine=GENERIC, level: int = 2) -> Trajectory:  # type: ignore[no-untyped-def]
+    sink = DiagnosticSink()
+    traj = plan_commands(cmds, machine, level, sink)
+    report = verify_trajectory(traj, cmds, machine, sink, corner_rule=effective_corner_rule(machine, level),
+                               check_dynamics=level > 0)
+    assert report.count == 0, [d.message for d in sink]
+    return traj
+
+
+def speed_at_boundary(traj: Trajectory, first_cmd_of_next: int) -> float:
+    k = int(np.flatnonzero(traj.cmd_index == first_cmd_of_next)[0])
+    return float(np.linalg.norm(traj.v0_mm_s[k]))
+
+
+def test_line_nominal_trapezoid_and_s_curve() -> None:
+    cmds = [line((10, 10), (110, 10), 3000)]  # 100 mm at 50 mm/s
+    v, length = 50.0, 100.0
+    assert plan(cmds, level=0).duration_total_s == pytest.approx(length / v)
+    assert plan(cmds, level=1).duration_total_s == pytest.approx(length / v + v / A_X)
+    assert plan(cmds, level=2).duration_total_s == pytest.approx(length / v + v / A_X + A_X / J_X)
+
+
+def test_move_too_short_to_reach_feed() -> None:
+    length = 0.5
+    cmds = [line((10, 10), (10 + length, 10), 3000)]
+    assert plan(cmds, level=1).duration_total_s == pytest.approx(2 * math.sqrt(length / A_X))
+    # jerk-limited, acceleration not reached (L < 2 A^3 / J^2): four jerk phases of equal length
+    assert length < 2 * A_X**3 / J_X**2
+    assert plan(cmds, level=2).duration_total_s == pytest.approx(4 * (length / (2 * J_X)) ** (1 / 3), rel=1e-6)
+
+
+def test_circle_at_centripetal_limit() -> None:
+    r = 20.0
+    cmds = [arc((50, 30), (50, 30), (30, 30), 1, 10000)]  # full circle, feed 166.7 mm/s
+    traj = plan(cmds, level=2)
+    speed = np.linalg.norm(traj.v0_mm_s, axis=1)
+    v_c = math.sqrt(0.5 * A_X * r)  # half the acceleration may be centripetal (NORMAL_SHARE)
+    assert v_c < 10000 / 60
+    assert speed.max() <= v_c * (1 + 1e-6)
+    assert speed.max() >= 0.9 * v_c
+    nominal = plan(cmds, level=0).duration_total_s
+    assert nominal == pytest.approx(2 * math.pi * r / (10000 / 60), rel=1e-3)
+
+
+def _corner() -> list:  # type: ignore[type-arg]
+    return [line((10, 10), (60, 10), 3000), line((60, 10), (60, 60), 3000)]
+
+
+def test_corner_junction_deviation() -> None:
+    traj = plan(_corner(), GENERIC, level=1)
+    delta, a_j = GENERIC.junction_deviation_mm, A_X * math.sqrt(2)  # junction unit (1, 1)/sqrt 2
+    s = math.sin(math.pi / 4)
+    expected = math.sqrt(a_j * delta * s / (1 - s))
+    assert speed_at_boundary(traj, 1) == pytest.approx(expected, rel=1e-9)
+
+
+def test_corner_speed_step_szgh() -> None:
+    traj = plan(_corner(), SZGH, level=1)
+    assert speed_at_boundary(traj, 1) == pytest.approx(500 / 60, rel=1e-9)  # spec §5.5: 500 mm/min
+
+
+def test_corner_exact_stop() -> None:
+    machine = load_machine("generic-mill", {"corner_rule": "exact-stop"})
+    traj = plan(_corner(), machine, level=1)
+    assert speed_at_boundary(traj, 1) == pytest.approx(0.0, abs=1e-12)
+    traj2 = plan(_corner(), machine, level=2)
+    assert speed_at_boundary(traj2, 1) == pytest.approx(0.0, abs=1e-12)
+
+
+def test_corner_blend_within_tolerance() -> None:
+    traj = plan(_corner(), GENERIC, level=2)
+    t = np.linspace(0, traj.duration_total_s, 20001)
+    p, _, _, _ = traj.sample(t)
+    dist = np.linalg.norm(p[:, :2] - np.array([60.0, 10.0]), axis=1).min()
+    delta = GENERIC.blend_tolerance_mm
+    assert 0.95 * delta <= dist <= 1.05 * delta
+
+
+def test_dwell_forces_a_stop() -> None:
+    cmds = [line((10, 10), (40, 10)), dwell(1.0), line((40, 10), (70, 10))]
+    traj = plan(cmds, level=2)
+    assert speed_at_boundary(traj, 2) == pytest.approx(0.0, abs=1e-12)
+    single = plan([line((10, 10), (40, 10))], level=2).duration_total_s
+    assert traj.duration_total_s == pytest.approx(2 * single)
+
+
+def test_independent_axis_rapid() -> None:
+    start, end = (0.0, 0.0, 0.0), (30.0, 10.0, -5.0)
+    rate, acc, v_s = 4000 / 60, 50000 / 60, 500 / 60  # SZGH P1-P4, P18-P21, P101-P104
+    cmds = [rapid(start, end)]
+    assert plan(cmds, SZGH, 0).duration_total_s == pytest.approx(30.0 / rate)
+
+    def axis_time(d: float) -> float:  # trapezoid from and to the take-off speed
+        d_ramp = (rate**2 - v_s**2) / acc
+        if d >= d_ramp:
+            return 2 * (rate - v_s) / acc + (d - d_ramp) / rate
+        vp = math.sqrt(v_s**2 + acc * d)
+        return 2 * (vp - v_s) / acc
+
+    traj = plan(cmds, SZGH, 1)
+    assert traj.duration_total_s == pytest.approx(max(axis_time(30), axis_time(10), axis_time(5)))
+    last = traj.phase_count - 1
+    assert traj.v0_mm_s[last, 1] == 0.0 and traj.v0_mm_s[last, 2] == 0.0  # Y and Z arrived: a dog-leg
+    assert plan(cmds, SZGH, 2).duration_total_s > traj.duration_total_s
+
+
+def test_levels_are_ordered() -> None:
+    square = polyline([(10, 10), (30, 10), (30, 30), (10, 30), (10, 10)])
+    t0, t1, t2 = (plan(square, level=lv).duration_total_s for lv in (0, 1, 2))
+    assert t0 < t1 and t0 < t2
+
+
+def test_boundary_speeds_match_a_sequential_pass() -> None:
+    from cncc.passes.planning.profile import boundary_speeds
+
+    rng = np.random.default_rng(1)
+    n = 200
+    length, vcap, acap = rng.uniform(0.1, 5, n), rng.uniform(5, 100, n), rng.uniform(100, 2000, n)
+    xcap = np.concatenate([[0.0], rng.uniform(0, 80, n - 1) ** 2, [0.0]])
+    x = boundary_speeds(length, vcap, acap, xcap)
+    ref = np.minimum(xcap, np.concatenate([[np.inf], vcap**2]))
+    ref = np.minimum(ref, np.concatenate([vcap**2, [np.inf]]))
+    for i in range(n):  # forward
+        ref[i + 1] = min(ref[i + 1], ref[i] + 2 * acap[i] * length[i])
+    for i in range(n - 1, -1, -1):  # backward
+        ref[i] = min(ref[i], ref[i + 1] + 2 * acap[i] * length[i])
+    np.testing.assert_allclose(x, ref, rtol=1e-9, atol=1e-9)
