@@ -326,6 +326,12 @@ def run_backend(cmds: Iterator[Command], src: SourceFile, sources: SourceMap, di
             if t is None:
                 return iter(())
             target = t
+        if opts.expand and opts.annotate_time:  # -E --annotate-time
+            from cncc.backends.timing import annotated_commands
+
+            cmd_list = list(cmds)
+            runs = timing_runs(cmd_list, machine, opts, sink)
+            cmds = iter(annotated_commands(cmd_list, runs, sources, src.name, dialect))
         return emit_gcode(cmds, target)
     if opts.emit == "timing":
         from cncc.backends.timing import timing_report

@@ -246,3 +246,35 @@ def test_progress_bar_only_on_a_terminal() -> None:
         pass
     assert pipe.getvalue() == ""
     assert "reading the program" in tty.getvalue()
+
+
+LOOP = """O0002
+G90 G71 G94
+T2 M06
+#1=0
+WHILE [#1 LT 3] DO1
+G91 G01 X10. F600
+G04 X0.5
+#1=#1+1
+END1
+G90 G00 Z5.
+M30
+"""
+
+
+def test_expanded_program_gets_a_time_after_every_executed_block() -> None:
+    r = compile_text(LOOP, emit="gcode", expand=True, annotate_time=True, opt_level=1)
+    assert r.ok, [d.message for d in r.sink]
+    notes = re.findall(r"\(t ([\d.]+) s \+([\d.]+) s\)", r.output)
+    assert len(notes) == 1 + 3 * 2 + 2  # T2 M06, three passes of (G01, G04), G00, M30
+    elapsed = [float(e) for e, _ in notes]
+    assert elapsed == sorted(elapsed)
+    assert [float(d) for _, d in notes][2:7:2] == [0.5, 0.5, 0.5]  # each pass's dwell
+    total = json.loads(compile_text(LOOP, emit="timing", report_format="json", opt_level=1).output)["total_s"]
+    assert elapsed[-1] == pytest.approx(total, abs=1e-3)
+    plain = compile_text(LOOP, emit="gcode", expand=True, opt_level=1).output
+
+    def motion(text: str) -> list[str]:
+        return [ln for ln in text.splitlines() if not ln.startswith("(")]
+
+    assert motion(r.output) == motion(plain)

@@ -22,7 +22,8 @@ from cncc.dialects import Dialect
 from cncc.ir import Command
 from cncc.source import NO_SPAN, SourceFile, SourceMap
 
-__all__ = ["FORMATS", "ColumnSpec", "Run", "TimingReport", "default_columns", "parse_compare", "timing_report"]
+__all__ = ["FORMATS", "ColumnSpec", "Run", "TimingReport", "annotated_commands", "default_columns", "parse_compare",
+           "timing_report"]
 
 FORMATS = ("text", "json", "html")
 
@@ -58,3 +59,14 @@ def timing_report(cmds: Sequence[Command], runs: Sequence[Run], src: SourceFile,
     from cncc.backends.timing.text import render_text
 
     return iter((render_text(rep, color),))
+
+
+def annotated_commands(cmds: Sequence[Command], runs: Sequence[Run], sources: SourceMap, file: str,
+                       dialect: Dialect) -> Iterator[Command]:
+    """``-E --annotate-time``: ``cmds`` with a comment giving the elapsed time after each executed block."""
+    from cncc.backends.timing.aggregate import build_report
+    from cncc.backends.timing.annotate import annotate_commands
+
+    if not runs:
+        return iter(cmds)
+    return annotate_commands(cmds, build_report(cmds, runs[:1], sources, file, dialect.name))

@@ -8,12 +8,18 @@ commands, written in the dialect's first comment syntax: parentheses go before a
 line (appended to an existing tail comment).  Lines that produced nothing (``%``,
 blank lines, control flow) are left as they were, so the result compiles to the same
 motion.  The note holds no ``=``: some controls read ``(NAME=...)`` as a setting.
+
+With ``-E`` the driver uses :func:`annotate_commands` instead: the expanded program's
+commands with a timing comment after every executed block, for the G-code emitter.
 """
 
 from __future__ import annotations
 
+from collections.abc import Iterator, Sequence
+
 from cncc.backends.timing.model import TimingReport, to_s
 from cncc.dialects import Dialect
+from cncc.ir import Command, Comment
 from cncc.source import SourceFile
 
 _OPENERS = {"paren": "(", "semicolon": ";", "slash": "//"}
@@ -60,3 +66,30 @@ def annotate_time(rep: TimingReport, src: SourceFile, dialect: Dialect) -> str:
         ending = raw[len(body):]
         out.append(annotate_line(body, notes[number], dialect) + ending if number in notes else raw)
     return "".join(out)
+
+
+def annotate_commands(cmds: Sequence[Command], rep: TimingReport) -> Iterator[Command]:
+    """``-E --annotate-time``: ``cmds`` with a timing :class:`Comment` after each executed block.
+
+    ``rep`` is the report of ``cmds`` (its primary column).  A block is a run of
+    consecutive commands from one source line, so every pass through a loop or a
+    subprogram gets its own elapsed time; the emitter writes the comments in the
+    target dialect's syntax.
+    """
+    import numpy as np
+
+    if not cmds:
+        return
+    ends = np.cumsum(rep.primary.cmd_ns).tolist()
+    lines = rep.index.cmd_line.tolist()
+    start_ns = 0
+    moved = False
+    for i, c in enumerate(cmds):
+        yield c
+        moved = moved or not isinstance(c, Comment)
+        if i + 1 < len(cmds) and lines[i + 1] == lines[i]:
+            continue
+        if moved:
+            note = f"t {to_s(ends[i]):.3f} s +{to_s(ends[i] - start_ns):.3f} s"
+            yield Comment(c.span, c.frame, note)
+        start_ns, moved = ends[i], False
