@@ -190,7 +190,7 @@ def _convert_fields(cls: type, raw: Mapping[str, Any], prefix: str, skip: frozen
     return out
 
 
-def _coerce(hint: Any, value: Any, path: str) -> Any:  # noqa: C901 - one branch per TOML type
+def _coerce(hint: Any, value: Any, path: str) -> Any:
     origin = typing.get_origin(hint)
     if origin in (types.UnionType, typing.Union):
         args = [a for a in typing.get_args(hint) if a is not type(None)]
@@ -220,10 +220,10 @@ def _coerce(hint: Any, value: Any, path: str) -> Any:  # noqa: C901 - one branch
     if origin is tuple:
         if not isinstance(value, list):
             raise MachineError(path, f"expected an array, got {value!r}")
-        args = typing.get_args(hint)
-        inner = args[0] if args else Any
+        params = typing.get_args(hint)
+        inner = params[0] if params else Any
         if inner is Any:
-            return tuple(value)
+            return tuple(v for v in value)
         return tuple(_coerce(inner, v, f"{path}[{i}]") for i, v in enumerate(value))
     return value
 

@@ -30,7 +30,7 @@ from __future__ import annotations
 
 from collections.abc import Iterable, Iterator, Sequence
 from dataclasses import dataclass, field
-from typing import ClassVar
+from typing import Any, ClassVar
 
 import numpy as np
 
@@ -114,8 +114,8 @@ def verify_trajectory(traj: Trajectory, cmds: Sequence[Command], machine: Machin
     rule = corner_rule if corner_rule is not None else machine.corner_rule
     ci = np.clip(traj.cmd_index, 0, max(len(cmds) - 1, 0))
 
-    def emit(code: str, bad: np.ndarray, what: str) -> None:
-        idx = np.flatnonzero(bad)
+    def emit(code: str, bad: Any, what: str) -> None:
+        idx = np.flatnonzero(np.asarray(bad))
         report.add(code, idx.size)
         for k in idx[:MAX_REPORTS]:
             span = cmds[int(ci[k])].span if len(cmds) else NO_SPAN
@@ -232,14 +232,14 @@ def _smeared(traj: Trajectory, step: FloatArray, a_end: FloatArray, amax: FloatA
 
     start_ok = np.abs(traj.a0_mm_s2 + box(t_b[:-1], True)) <= amax * (1 + REL) + 1e-6
     end_ok = np.abs(a_end + box(t_b[1:], False)) <= amax * (1 + REL) + 1e-6
-    bad = ~(start_ok.all(axis=1) & end_ok.all(axis=1))
+    bad: np.ndarray = np.asarray(~(start_ok.all(axis=1) & end_ok.all(axis=1)))
     t_box = t_b + period  # the smear of each step ends here
     k = np.clip(np.searchsorted(traj.t0_s, t_box, side="left") - 1, 0, n - 1)
     tau = np.clip(t_box - traj.t0_s[k], 0, traj.duration_s[k])[:, None]
     a_at = traj.a0_mm_s2[k] + traj.j_mm_s3[k] * tau
     inside = (t_box < t_b[-1])[:, None]
     box_ok = np.abs(np.where(inside, a_at, 0.0) + box(t_box, True)) <= amax * (1 + REL) + 1e-6
-    bad_box = ~box_ok.all(axis=1)
+    bad_box = np.asarray(~box_ok.all(axis=1))
     np.logical_or.at(bad, k, bad_box)
     return bad
 

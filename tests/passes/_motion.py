@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import itertools
+
 from cncc.ir.commands import Arc, Dwell, Linear, Rapid
 from cncc.ir.frame import IDENTITY_FRAME, Plane, Vec6
 from cncc.source import NO_SPAN
@@ -28,4 +30,4 @@ def dwell(s: float) -> Dwell:
 
 
 def polyline(points: list[tuple[float, ...]], feed: float = 3000.0) -> list[Linear]:
-    return [line(a, b, feed) for a, b in zip(points[:-1], points[1:], strict=True)]
+    return [line(a, b, feed) for a, b in itertools.pairwise(points)]

@@ -138,8 +138,8 @@ def _filter(ph: Phases, tf: float, total_s: float) -> Phases:
     knots = np.unique(np.concatenate([ph.t0, ph.t0 + tf, [end, end + tf]]))
     knots = knots[knots < end + tf - 1e-13]
     dur = np.diff(np.concatenate([knots, [end + tf]]))
-    s1, v1, a1, i1 = _state(ph, cum_int, total_s, knots)
-    s2, v2, a2, i2 = _state(ph, cum_int, total_s, knots - tf)
+    s1, v1, _a1, i1 = _state(ph, cum_int, total_s, knots)
+    s2, v2, _a2, i2 = _state(ph, cum_int, total_s, knots - tf)
     mid = knots + dur / 2
     _, _, am1, _ = _state(ph, cum_int, total_s, mid)
     _, _, am2, _ = _state(ph, cum_int, total_s, mid - tf)

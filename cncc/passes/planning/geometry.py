@@ -158,7 +158,8 @@ def _check_axes(cmd: Rapid | Linear | Arc, limits: AxisLimits, sink: DiagnosticS
         if not limits.present[i] and abs(a - b) > 1e-9 and f"axis{i}" not in warned:
             warned.add(f"axis{i}")
             sink.emit(dg.AXIS_NOT_ON_MACHINE, cmd.span,
-                      f"axis {'XYZABC'[i]} moves but the machine has no such axis (planned with the first axis' limits)")
+                      f"axis {'XYZABC'[i]} moves but the machine has no such axis "
+                      "(planned with the first axis' limits)")
 
 
 def _arc_chord_max(cmd: Arc, feed_mm_s: float, machine: MachineModel, limits: AxisLimits) -> float:
@@ -203,4 +204,5 @@ def arc_points(cmd: Arc, sag_mm: float, chord_max_mm: float = math.inf) -> Float
     pts[:, f] = cf + rad * np.cos(ang)
     pts[:, s] = cs + rad * np.sin(ang)
     pts[-1] = end
-    return pts
+    out: FloatArray = pts
+    return out

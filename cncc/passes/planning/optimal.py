@@ -95,7 +95,7 @@ def _solve(seg: Segments, k: np.ndarray, vertex: np.ndarray, s0: FloatArray, v0:
     opti.set_initial(s, s0)
     opti.set_initial(v, v0)
     opti.set_initial(a, a0)
-    opti.solver("ipopt", {"print_time": False}, {"print_level": 0, "max_iter": 300, "max_cpu_time": 20.0, "tol": 1e-9,
+    opti.solver("ipopt", {"print_time": False}, {"print_level": 0, "max_iter": 1500, "max_cpu_time": 30.0, "tol": 1e-9,
                                                  "sb": "yes"})
     try:
         sol = opti.solve()

@@ -14,6 +14,7 @@ segments):
 
 from __future__ import annotations
 
+import itertools
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -100,7 +101,8 @@ def speed_step(seg: Segments, limits: AxisLimits) -> FloatArray:
         v = np.where(du > 1e-12, steps[None, :] / np.maximum(du, 1e-300), np.inf).min(axis=1)
     reverses = (u_in * u_out < -1e-12)
     rev_speed = np.where(reverses, np.where(limits.reversal_mm_s > 0, limits.reversal_mm_s, np.inf)[None, :], np.inf)
-    return np.minimum(v, rev_speed.min(axis=1))
+    out: FloatArray = np.minimum(v, rev_speed.min(axis=1))
+    return out
 
 
 def take_off_speed(seg: Segments, limits: AxisLimits, machine: MachineModel) -> tuple[float, float]:
@@ -120,7 +122,7 @@ def split_at_stops(seg: Segments) -> list[Segments]:
         return [seg]
     bounds = [0, *zero.tolist(), seg.count]
     parts = []
-    for a, b in zip(bounds[:-1], bounds[1:], strict=True):
+    for a, b in itertools.pairwise(bounds):
         vv = seg.vvert[a:b + 1].copy()
         vv[0] = vv[-1] = 0.0
         parts.append(replace(seg, p0=seg.p0[a:b], u=seg.u[a:b], length=seg.length[a:b],
