@@ -39,6 +39,10 @@ def _parser() -> argparse.ArgumentParser:
                    help="timing report columns: planner levels and/or machines, e.g. O0,O1,O2 or szgh-990mdb@O1")
     p.add_argument("--annotate-time", action="store_true",
                    help="timing: output the program with each block's elapsed time as a comment")
+    p.add_argument("--pulse-format", default="vcd", choices=["vcd", "csv", "npz", "queue"],
+                   help="--emit=pulses writer (npz needs -o FILE; default: vcd)")
+    p.add_argument("--pulse-mode", default="exact", choices=["exact", "interp"],
+                   help="--emit=pulses: exact step times, or SZGH 2 ms interpolation (default: exact)")
     m = p.add_argument_group("macros and subprograms")
     m.add_argument("-D", dest="defines", action="append", default=[], metavar="#N=VALUE",
                    help="preset a macro variable, e.g. -D#100=5 (repeatable)")
@@ -105,7 +109,8 @@ def build_options(ns: argparse.Namespace, error: Any) -> Any:
     opts = Options(inputs=list(ns.inputs), dialect=ns.dialect, target=ns.target, machine=ns.machine,
                    emit=ns.emit, output=ns.output, opt_level=ns.opt_level, offsets_file=ns.offsets_file,
                    tools_file=ns.tools_file, report_format=ns.report_format,
-                   compare=ns.compare, annotate_time=ns.annotate_time)
+                   compare=ns.compare, annotate_time=ns.annotate_time,
+                   pulse_format=ns.pulse_format, pulse_mode=ns.pulse_mode)
     for flag in ns.flags:
         if flag == "syntax-only":
             opts.syntax_only = True
@@ -151,12 +156,13 @@ def main(argv: Sequence[str] | None = None) -> int:
 
 
 def run(opts: Any) -> int:
-    from cncc.driver import compile_files, write_output
+    from cncc.driver import compile_files, write_output, writes_own_output
     from cncc.render import render
 
     result = compile_files(opts)
     to_stdout = opts.output in (None, "-")
-    if not opts.syntax_only and (not result.sink.has_errors or (result.output and to_stdout)):
+    if not opts.syntax_only and not writes_own_output(opts) and (
+            not result.sink.has_errors or (result.output and to_stdout)):
         write_output(result.output, opts.output, opts.inputs, result.sink)
     err = sys.stderr
     for d in result.sink:

@@ -10,9 +10,9 @@ from __future__ import annotations
 import os
 import sys
 import tempfile
-from collections.abc import Iterable, Iterator
+from collections.abc import Callable, Iterable, Iterator
 from dataclasses import dataclass, field
-from typing import Any, TextIO
+from typing import IO, Any, TextIO
 
 from cncc import diagnostics as dg
 from cncc.diagnostics import DiagnosticSink
@@ -55,6 +55,14 @@ class Options:
     write_dir: str | None = None
     compare: str = ""  # timing report columns: "O0,O1,O2" or machine names (NAME@O1)
     annotate_time: bool = False  # timing: the program with elapsed times as comments
+    # translation (--emit=gcode -t, cncc/backends/gcode, docs/translation.md)
+    units: str = ""  # --units: "" as programmed, "mm" or "inch"
+    line_numbers: bool = False  # -fline-numbers
+    keep_subprograms: bool = False  # --keep-subprograms (not implemented: noted)
+    decimals_mm: int | None = None  # --decimals-mm
+    decimals_inch: int | None = None  # --decimals-inch
+    pulse_format: str = "vcd"  # --emit=pulses: vcd | csv | npz | queue
+    pulse_mode: str = "exact"  # --emit=pulses: exact | interp (SZGH 2 ms interpolation)
 
 
 @dataclass(slots=True)
@@ -241,9 +249,36 @@ def path_passes(cmds: Iterable[Command], dialect: Dialect, machine: MachineModel
     ctx = PassContext(sink=sink, dialect=dialect, machine=machine)
     tol_abs = float(dialect.option("arc_radius_tolerance_mm", ArcCheck.abs_tol_mm))
     tol_rel = float(dialect.option("arc_radius_tolerance_rel", ArcCheck.rel_tol))
-    passes = [ExpandCycles(), *frame_passes(dialect, machine_coords=opts.emit in MACHINE_EMITS),
+    keep: frozenset[str] = frozenset()
+    if opts.emit == "gcode" and not opts.expand:  # translation: keep the cycles the target runs alike
+        cmds, keep = translation_prepare(cmds, dialect, opts, sink)
+    passes = [ExpandCycles(keep=keep), *frame_passes(dialect, machine_coords=opts.emit in MACHINE_EMITS),
               ArcCheck(abs_tol_mm=max(tol_abs, ArcCheck.abs_tol_mm), rel_tol=tol_rel, repair=opts.repair_arcs)]
     return run_pipeline(passes, cmds, ctx)
+
+
+def output_dialect(dialect: Dialect, opts: Options, sink: DiagnosticSink) -> Dialect | None:
+    """The dialect --emit=gcode writes: -t, else the input dialect."""
+    if not opts.target or opts.target == dialect.name:
+        return dialect
+    return resolve_dialect(Options(dialect=opts.target), sink)
+
+
+def translation_prepare(cmds: Iterable[Command], dialect: Dialect, opts: Options,
+                        sink: DiagnosticSink) -> tuple[Iterable[Command], frozenset[str]]:
+    """Cycles the target cannot keep expanded now (before the transforms), notes for what cncc applies."""
+    from cncc.backends.gcode import make_target
+    from cncc.backends.gcode.translate import kept_cycle_kinds, note, prepare
+    from cncc.passes.expand_cycles import expand
+
+    target = output_dialect(dialect, opts, sink)
+    if target is None:
+        return cmds, frozenset()
+    tgt = make_target(target)
+    if opts.keep_subprograms:
+        note(sink, dg.XL_SUBPROGRAMS, NO_SPAN, "--keep-subprograms: cncc cannot keep subprogram calls yet; "
+                                               "the output is flattened")
+    return prepare(cmds, tgt, expand, sink), kept_cycle_kinds(tgt)
 
 
 def frame_passes(dialect: Dialect, machine_coords: bool) -> list[Any]:
@@ -342,6 +377,8 @@ def run_backend(cmds: Iterator[Command], src: SourceFile, sources: SourceMap, di
         color = opts.output in (None, "-") and sys.stdout.isatty()
         return timing_report(cmd_list, runs, src, sources, dialect, opts.report_format, sink,
                              annotate=opts.annotate_time, color=color)
+    if opts.emit == "pulses":
+        return pulse_backend(cmds, machine, opts, sink)
     if opts.emit == "none":
         for _ in cmds:
             pass
@@ -361,6 +398,51 @@ def plan_trajectory(cmds: list[Command], machine: MachineModel, level: int, sink
     from cncc.passes.plan import plan_commands
 
     return plan_commands(cmds, machine, level=level, sink=sink), f"planned -O{level}"
+
+
+PULSE_BINARY_FORMATS = ("npz",)
+
+
+def writes_own_output(opts: Options) -> bool:
+    """True when the backend streams straight into ``opts.output`` (pulses to a file)."""
+    return opts.emit == "pulses" and opts.output not in (None, "-")
+
+
+def pulse_option_problem(opts: Options, formats: tuple[str, ...], modes: tuple[str, ...]) -> str:
+    """What is wrong with the --emit=pulses options ('' when nothing)."""
+    to_stdout = opts.output in (None, "-")
+    if opts.pulse_format not in formats:
+        return f"unknown --pulse-format={opts.pulse_format} (choose from {', '.join(formats)})"
+    if opts.pulse_mode not in modes:
+        return f"unknown --pulse-mode={opts.pulse_mode} (choose from {', '.join(modes)})"
+    if opts.pulse_format in PULSE_BINARY_FORMATS and to_stdout:
+        return f"--pulse-format={opts.pulse_format} is binary: name the output file with -o FILE"
+    if not to_stdout and len(opts.inputs) > 1:
+        return "--emit=pulses -o FILE takes one input program"
+    return ""
+
+
+def pulse_backend(cmds: Iterator[Command], machine: MachineModel, opts: Options, sink: DiagnosticSink
+                  ) -> Iterator[str]:
+    """--emit=pulses: plan at -O<level>, then step/dir pulses; text to stdout, or streamed into -o FILE."""
+    import io
+
+    from cncc.backends.pulses import FORMATS, MODES, generate_pulses, write_pulses
+
+    fmt, to_stdout = opts.pulse_format, opts.output in (None, "-")
+    problem = pulse_option_problem(opts, FORMATS, MODES)
+    cmd_list = list(cmds)
+    if problem:
+        sink.emit(dg.BAD_OPTION, NO_SPAN, problem)
+        return iter(())
+    traj, _ = plan_trajectory(cmd_list, machine, opts.opt_level, sink)
+    chunks = generate_pulses(traj, machine, mode=opts.pulse_mode, spans=[c.span for c in cmd_list], sink=sink)
+    if to_stdout:
+        buf = io.StringIO()
+        write_pulses(chunks, fmt, buf)
+        return iter((buf.getvalue(),))
+    write_stream(opts.output or "-", opts.inputs, sink, lambda fh: write_pulses(chunks, fmt, fh))
+    return iter(())
 
 
 def timing_runs(cmds: list[Command], machine: MachineModel, opts: Options, sink: DiagnosticSink) -> list[Any]:
@@ -384,6 +466,31 @@ def timing_runs(cmds: list[Command], machine: MachineModel, opts: Options, sink:
 
 
 # ---- outputs ---------------------------------------------------------------------------------
+def write_stream(path: str, inputs: list[str], sink: DiagnosticSink, write: Callable[[IO[bytes]], Any]) -> bool:
+    """Stream ``write(binary file)`` into ``path`` atomically; nothing is kept if errors were reported."""
+    real = os.path.realpath(path)
+    if any(inp != "-" and os.path.exists(inp) and os.path.realpath(inp) == real for inp in inputs):
+        sink.emit(dg.OUTPUT_IS_INPUT, NO_SPAN, f"refusing to overwrite the input file {path}")
+        return False
+    try:
+        fd, tmp = tempfile.mkstemp(prefix=".cncc-", suffix=".tmp", dir=os.path.dirname(real) or ".")
+        try:
+            with os.fdopen(fd, "wb") as fh:
+                write(fh)
+            if sink.has_errors:
+                os.unlink(tmp)
+                return False
+            os.replace(tmp, real)
+        except BaseException:
+            if os.path.exists(tmp):
+                os.unlink(tmp)
+            raise
+    except OSError as exc:
+        sink.emit(dg.CANNOT_WRITE, NO_SPAN, f"cannot write {path}: {exc.strerror or exc}")
+        return False
+    return True
+
+
 def write_output(text: str, path: str | None, inputs: list[str], sink: DiagnosticSink,
                  stdout: TextIO | None = None) -> bool:
     """Write ``text`` to ``path`` atomically (``-``/None: stdout); never over an input."""
