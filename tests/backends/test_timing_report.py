@@ -278,3 +278,16 @@ def test_expanded_program_gets_a_time_after_every_executed_block() -> None:
         return [ln for ln in text.splitlines() if not ln.startswith("(")]
 
     assert motion(r.output) == motion(plain)
+
+
+@pytest.mark.parametrize("program", ["", "(only a comment)\n", "G04 X1.\nM00\n", "G01 X0 F100\n", "G00 X10.\n",
+                                     "N10 G01 X10. F600\nN10 X20.\nN20 X30.\n"])
+def test_odd_programs_give_valid_reports(program: str) -> None:
+    validator = jsonschema.Draft202012Validator(schema())
+    doc = json.loads(compile_text(program, emit="timing", report_format="json", opt_level=0).output)
+    validator.validate(doc)
+    assert doc["total_ns"] == sum(line["times_ns"][0] for line in doc["lines"])
+    assert sum(b["times_ns"][0] for b in doc["blocks"]) == doc["total_ns"]
+    page = compile_text(program, emit="timing", report_format="html", opt_level=0).output
+    assert page.count("<svg") == 3
+    assert compile_text(program, emit="timing", opt_level=0).output.startswith("cycle time")

@@ -51,7 +51,7 @@ def render_text(rep: TimingReport, color: bool = False) -> str:
         con.print(f"  * operator-dependent stops and waits: {_s(p.operator_ns)} s assumed (machine model)")
 
     def table(title: str, first: str) -> Table:
-        t = Table(title=title, title_justify="left", show_edge=False, pad_edge=False)
+        t = Table(title=title, title_justify="left", show_edge=False, pad_edge=False, min_width=len(title))
         t.add_column(first)
         for lab in labels:
             t.add_column(f"{lab} [s]", justify="right")
@@ -71,6 +71,12 @@ def render_text(rep: TimingReport, color: bool = False) -> str:
         t.add_row("none" if tool < 0 else f"T{tool}", *(_s(sum(c.tool_ns.get(tool, {}).values())) for c in cols))
     con.print(t)
     con.print(_line_table(rep, rep.top(), f"the {rep.top_n} slowest blocks", labels))
+    blocks = rep.blocks()
+    if len(blocks) < sum(1 for r in rep.lines if r.n) + (1 if any(not r.n for r in rep.lines) else 0):
+        t = table("time per N block", "N")
+        for n, ts in blocks:
+            t.add_row(n or "(none)", *map(_s, ts))
+        con.print(t)
     shown = rep.lines[:MAX_LINES]
     con.print(_line_table(rep, shown, "time per line", labels, elapsed=True))
     if len(rep.lines) > MAX_LINES:
