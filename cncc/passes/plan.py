@@ -133,7 +133,7 @@ def _plan_part(seg: Segments, machine: MachineModel, limits: AxisLimits, level: 
     if level == 0:
         t = seg.length / seg.vcap
         ph = Phases(np.concatenate([[0.0], np.cumsum(t)[:-1]]), t, seg.s0[:-1], seg.vcap.copy(),
-                    np.zeros_like(t), np.zeros_like(t), seg.vlim.copy())
+                    np.zeros_like(t), np.zeros_like(t), seg.vlim.copy(), np.arange(seg.count))
         return path_rows(seg, ph)
     if level == 1:
         if rule is CornerRule.SPEED_STEP:

@@ -51,7 +51,8 @@ def round_corners(run: PathRun, limits: AxisLimits, machine: MachineModel) -> Pa
     half = theta / 2
     with np.errstate(divide="ignore", invalid="ignore"):
         r_tol = tol / (1.0 / np.cos(half) - 1.0)
-    d_t = np.minimum.reduce([r_tol * np.tan(half), 0.5 * length[:-1], 0.5 * length[1:]])
+        d_tol = np.nan_to_num(r_tol * np.tan(half), nan=0.0, posinf=np.inf)
+    d_t = np.minimum.reduce([d_tol, 0.5 * length[:-1], 0.5 * length[1:]])
     ok &= d_t > 1e-9
     radius = np.where(ok, d_t / np.tan(np.where(ok, half, 1.0)), 0.0)
     e2 = u_out - cos_t[:, None] * u_in

@@ -68,9 +68,13 @@ def split_at(ph: Phases, cuts: FloatArray) -> Phases:
 
 
 def path_rows(seg: Segments, ph: Phases) -> Rows:
-    ph = split_at(ph, seg.s0[1:-1])
-    s_mid, _, _ = eval_phase(ph, np.arange(ph.t0.size), ph.dur / 2)
-    k = np.clip(np.searchsorted(seg.s0, s_mid, side="right") - 1, 0, seg.count - 1)
+    """Rows of a run; ``ph.interval`` (if set) gives each phase's segment directly."""
+    if ph.interval is not None and ph.interval.size == ph.t0.size:
+        k = ph.interval
+    else:
+        ph = split_at(ph, seg.s0[1:-1])
+        s_mid, _, _ = eval_phase(ph, np.arange(ph.t0.size), ph.dur / 2)
+        k = np.clip(np.searchsorted(seg.s0, s_mid, side="right") - 1, 0, seg.count - 1)
     u = seg.u[k]
     p0 = seg.p0[k] + u * (ph.s0 - seg.s0[k])[:, None]
     limit = np.where(ph.limit == Limit.NONE, seg.vlim[k], ph.limit).astype(np.int8)

@@ -33,6 +33,7 @@ class Phases:
     a0: FloatArray
     j: FloatArray
     limit: np.ndarray  # int8, the Limit of each phase
+    interval: np.ndarray | None = None  # index of the interval of each phase, when known
 
     @property
     def end_time(self) -> float:
@@ -78,7 +79,8 @@ def trapezoids(length: FloatArray, vcap: FloatArray, acap: FloatArray, x: FloatA
     s_start = np.concatenate([[0.0], np.cumsum(length)[:-1]])
     s0 = np.stack([s_start, s_start + d_acc, s_start + d_acc + d_cru], axis=1).reshape(-1)
     lim = np.stack([np.full(n, accel_limit), limit, np.full(n, accel_limit)], axis=1).reshape(-1)
+    interval = np.repeat(np.arange(n), 3)
     keep = dur > 1e-12
-    dur, v0, acc, s0, lim = dur[keep], v0[keep], acc[keep], s0[keep], lim[keep]
+    dur, v0, acc, s0, lim, interval = dur[keep], v0[keep], acc[keep], s0[keep], lim[keep], interval[keep]
     t0 = np.concatenate([[0.0], np.cumsum(dur)[:-1]]) if dur.size else dur
-    return Phases(t0, dur, s0, v0, acc, np.zeros_like(dur), lim.astype(np.int8))
+    return Phases(t0, dur, s0, v0, acc, np.zeros_like(dur), lim.astype(np.int8), interval)

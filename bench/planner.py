@@ -1,0 +1,125 @@
+"""Planner benchmark: throughput, -O2/-O3 optimality, corner strategies, verify.
+
+Run: ``python bench/planner.py [--quick]``.  Prints
+
+(a) segments per second at -O1 and -O2 on a 100,000-segment CAM path (goal -O2 >= 10,000);
+(b) cycle time -O2 / -O3 on short paths (goal <= 1.03 each);
+(c) -O2 against jerk-limited exact stop at every corner and against -O1, as ratios;
+(d) the number of verify violations of every plan (goal 0).
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+
+from cncc.diagnostics import DiagnosticSink  # noqa: E402
+from cncc.ir.commands import Arc, Command, Linear  # noqa: E402
+from cncc.ir.frame import IDENTITY_FRAME, Plane  # noqa: E402
+from cncc.ir.machine import MachineModel  # noqa: E402
+from cncc.machines import effective_corner_rule, load_machine  # noqa: E402
+from cncc.passes.plan import plan_commands  # noqa: E402
+from cncc.passes.verify import verify_trajectory  # noqa: E402
+from cncc.source import NO_SPAN  # noqa: E402
+
+Pt = tuple[float, float, float]
+
+
+def _v6(p: Pt) -> tuple[float, float, float, float, float, float]:
+    return (p[0], p[1], p[2], 0.0, 0.0, 0.0)
+
+
+def polyline(points: list[Pt], feed: float) -> list[Command]:
+    return [Linear(NO_SPAN, IDENTITY_FRAME, _v6(a), _v6(b), feed) for a, b in zip(points[:-1], points[1:], strict=True)]
+
+
+def cam_path(n_segments: int) -> list[Command]:
+    """A 3-axis raster finishing path over z = 2 sin(x/7) cos(y/9), 0.25 mm steps."""
+    per_row = 1000
+    rows = n_segments // per_row + 1
+    pts: list[Pt] = []
+    for r in range(rows):
+        y = 10 + 0.5 * r
+        xs = np.linspace(10, 10 + 0.25 * per_row, per_row)
+        xs = xs if r % 2 == 0 else xs[::-1]
+        pts.extend((float(x), y, float(-3 + 2 * math.sin(x / 7) * math.cos(y / 9))) for x in xs)
+    return polyline(pts[: n_segments + 1], 3000)
+
+
+def short_paths() -> dict[str, list[Command]]:
+    c = (60.0, 60.0, -1.0)
+
+    def arc(start: Pt, end: Pt, center: Pt, turns: int, feed: float) -> Arc:
+        return Arc(NO_SPAN, IDENTITY_FRAME, _v6(start), _v6(end), _v6(center), turns, Plane.XY, feed)
+
+    spiral = [(c[0] + (2 + 0.4 * t) * math.cos(t), c[1] + (2 + 0.4 * t) * math.sin(t), -1.0)
+              for t in np.linspace(0, 4 * math.pi, 80)]
+    curve = [(20 + t, 40 + 8 * math.sin(t / 6), -1.0) for t in np.linspace(0, 40, 120)]
+    return {
+        "square pocket": polyline([(40, 40, -1), (60, 40, -1), (60, 60, -1), (40, 60, -1), (40, 40, -1),
+                                   (45, 45, -1), (55, 45, -1), (55, 55, -1), (45, 55, -1), (45, 45, -1)], 2000),
+        "circle": [arc((70, 60, -1), (70, 60, -1), c, 1, 3000)],
+        "spiral": polyline(spiral, 2500),
+        "zig-zag": polyline([(20 + 3 * i, 30 + 10 * (i % 2), -1) for i in range(15)], 3000),
+        "fine polyline": polyline(curve, 4000),
+        "helix": [arc((70, 60, -1), (70, 60, -4), c, 2, 1500)],
+        "short fast segments": polyline([(20 + 0.3 * i, 30 + 0.05 * (i % 3), -1) for i in range(60)], 9000),
+        "slot": polyline([(20, 20, -1), (80, 20, -1), (80, 22, -1), (20, 22, -1)], 2500),
+        "triangle": polyline([(20, 20, -1), (60, 20, -1), (40, 50, -1), (20, 20, -1)], 3000),
+        "plunge and cut": polyline([(30, 30, 0), (30, 30, -3), (50, 30, -3), (50, 35, -3)], 1200),
+        "star": polyline([(50 + 15 * math.cos(a) * (1 if i % 2 == 0 else 0.4),
+                           50 + 15 * math.sin(a) * (1 if i % 2 == 0 else 0.4), -1)
+                          for i, a in enumerate(np.linspace(0, 2 * math.pi, 11))], 2500),
+        "feed change": polyline([(20, 20, -1), (40, 20, -1)], 1000) + polyline([(40, 20, -1), (70, 20, -1)], 5000),
+    }
+
+
+def timed_plan(cmds: list[Command], machine: MachineModel, level: int) -> tuple[float, float, int]:
+    sink = DiagnosticSink()
+    t0 = time.perf_counter()
+    traj = plan_commands(cmds, machine, level, sink)
+    elapsed = time.perf_counter() - t0
+    report = verify_trajectory(traj, cmds, machine, sink, corner_rule=effective_corner_rule(machine, level),
+                               check_dynamics=level > 0)
+    return traj.duration_total_s, elapsed, report.count
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--quick", action="store_true", help="10,000 segments and no -O3")
+    args = ap.parse_args()
+    machine = load_machine("generic-mill")
+    violations = 0
+    n = 10_000 if args.quick else 100_000
+    cam = cam_path(n)
+    print(f"(a) throughput on a {n:,}-segment CAM path (generic-mill)")
+    for level in (1, 2):
+        cycle, elapsed, bad = timed_plan(cam, machine, level)
+        violations += bad
+        print(f"    -O{level}: {n / elapsed:10,.0f} segments/s  ({elapsed:.2f} s, cycle {cycle:.1f} s, {bad} violations)")
+    print("(b) -O2 / -O3 cycle time       (c) -O2 / exact stop   -O2 / -O1")
+    stop_machine = load_machine("generic-mill", {"corner_rule": "exact-stop"})
+    for name, cmds in short_paths().items():
+        t2, _, b2 = timed_plan(cmds, machine, 2)
+        t1, _, b1 = timed_plan(cmds, machine, 1)
+        ts, _, bs = timed_plan(cmds, stop_machine, 2)
+        violations += b1 + b2 + bs
+        if args.quick:
+            r23 = "   n/a"
+        else:
+            t3, e3, b3 = timed_plan(cmds, machine, 3)
+            violations += b3
+            r23 = f"{t2 / t3:6.3f}"
+        print(f"    {name:22s} {r23}   (O2 {t2:6.3f} s)   {t2 / ts:6.3f}       {t2 / t1:6.3f}")
+    print(f"(d) verify violations over all plans: {violations}")
+
+
+if __name__ == "__main__":
+    main()
