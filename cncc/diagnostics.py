@@ -145,6 +145,9 @@ VERIFY_SOFT_LIMIT = _define("E0615", E, "verify: an axis leaves its soft limits"
 VERIFY_CONTINUITY = _define("E0616", E, "verify: the trajectory jumps in position or time between phases")
 VERIFY_CORNER = _define("E0617", E, "verify: a velocity step at a phase boundary exceeds the corner rule")
 
+# --- E069x: timing reports (cncc/backends/timing) ----------------------------------
+TIME_CLAMPED = _define("W0690", W, "a time too long or not finite for the timing report was clamped")
+
 # --- E07xx: pulses -------------------------------------------------------------
 STEP_RATE = _define("E0701", E, "an axis would step faster than its maximum step rate")
 PULSE_SPACING = _define("E0702", E, "two pulses of an axis closer than the minimum spacing (twice the pulse width)")

@@ -291,3 +291,17 @@ def test_odd_programs_give_valid_reports(program: str) -> None:
     page = compile_text(program, emit="timing", report_format="html", opt_level=0).output
     assert page.count("<svg") == 3
     assert compile_text(program, emit="timing", opt_level=0).output.startswith("cycle time")
+
+
+@pytest.mark.parametrize("program", ["G04 X99999999999999999999.\n", "G01 X1. F0.000000000000000000001\n",
+                                     "G01 X99999999999999999999. F1.\nG04 X99999999999999999999.\n"])
+def test_absurd_times_are_clamped_with_a_warning(program: str) -> None:
+    from cncc.backends.timing.model import MAX_S
+
+    r = compile_text(program, emit="timing", report_format="json", opt_level=0)
+    assert r.ok
+    assert "W0690" in [d.code for d in r.sink]
+    doc = json.loads(r.output)
+    jsonschema.Draft202012Validator(schema()).validate(doc)
+    assert 0 < doc["total_s"] <= 2 * MAX_S
+    assert doc["total_ns"] == sum(line["times_ns"][0] for line in doc["lines"])

@@ -43,7 +43,7 @@ def timing_report(cmds: Sequence[Command], runs: Sequence[Run], src: SourceFile,
         return iter(())
     if not runs:
         return iter(())
-    rep = build_report(cmds, runs, sources, src.name, dialect.name, top_n)
+    rep = build_report(cmds, runs, sources, src.name, dialect.name, top_n, sink)
     if annotate:
         from cncc.backends.timing.annotate import annotate_time
 

@@ -15,9 +15,11 @@ from __future__ import annotations
 import re
 from collections.abc import Sequence
 
+from cncc import diagnostics as dg
 from cncc.backends.timing.events import CATEGORIES, EVENT_TYPES, EventTimer
 from cncc.backends.timing.model import (
     LIMIT_KEYS,
+    MAX_S,
     MOTION_LIMITS,
     NS_PER_S,
     Column,
@@ -28,10 +30,12 @@ from cncc.backends.timing.model import (
     to_ns,
 )
 from cncc.backends.timing.progress import track
+from cncc.diagnostics import DiagnosticSink
 from cncc.ir import Arc, Command, Linear, Rapid, ToolChange
 from cncc.ir.machine import MachineModel
-from cncc.source import SourceMap
+from cncc.source import NO_SPAN, SourceMap
 
+MAX_NS = to_ns(MAX_S)
 _N_WORD = re.compile(r"\s*/?\s*([Nn]\s*\d+)")
 _EVENT_LIMIT = {"dwell": "program", "tool_change": "machine", "spindle": "machine", "wait": "operator"}
 _MOTION_CAT = {Rapid: 0, Linear: 1, Arc: 2}
@@ -86,17 +90,21 @@ def _span_starts_to_lines(index: ProgramIndex, sources: SourceMap) -> None:
     index.cmd_line = new_id[index.cmd_line] if len(index.cmd_line) else index.cmd_line
 
 
-def phase_ns(run: Run) -> tuple[int, object]:
-    """(duration of the trajectory in ns, per-phase ns array) with exact telescoping sums."""
+def phase_ns(run: Run) -> tuple[int, object, bool]:
+    """(trajectory duration in ns, per-phase ns array, clamped?) with exact telescoping sums."""
     import numpy as np
 
     traj = run.trajectory
-    total_ns = to_ns(traj.duration_total_s)
+    total_s = traj.duration_total_s
+    total_ns = to_ns(total_s)
+    clamped = not 0.0 <= total_s <= MAX_S
     if traj.phase_count == 0:
-        return total_ns, np.zeros(0, dtype=np.int64)
-    bounds = np.rint(traj.t0_s * NS_PER_S).astype(np.int64)
+        return total_ns, np.zeros(0, dtype=np.int64), clamped
+    t0 = np.nan_to_num(traj.t0_s, nan=0.0, posinf=MAX_S, neginf=0.0)
+    clamped = clamped or bool((t0 > MAX_S).any()) or not np.isfinite(traj.t0_s).all()
+    bounds = np.rint(np.clip(t0, 0.0, MAX_S) * NS_PER_S).astype(np.int64)
     bounds[0] = 0
-    return total_ns, np.diff(np.append(bounds, total_ns))
+    return total_ns, np.diff(np.append(np.minimum(bounds, total_ns), total_ns)), clamped
 
 
 def column(run: Run, cmds: Sequence[Command], index: ProgramIndex) -> Column:
@@ -104,7 +112,8 @@ def column(run: Run, cmds: Sequence[Command], index: ProgramIndex) -> Column:
 
     n_lines, n_cmds = len(index.line_keys), len(cmds)
     traj = run.trajectory
-    motion_ns, dur_ns = phase_ns(run)
+    motion_ns, dur_ns, clamped = phase_ns(run)
+    clamped_cmd = int(traj.cmd_index[0]) if clamped and traj.phase_count else -1
     dur = np.asarray(dur_ns, dtype=np.int64)
     ci = traj.cmd_index.astype(np.int64)
     cmd_ns = np.zeros(n_cmds, dtype=np.int64)
@@ -128,7 +137,9 @@ def column(run: Run, cmds: Sequence[Command], index: ProgramIndex) -> Column:
         ev = timer.event(cmds[i])
         if ev is None or covered[i]:
             continue
-        ns = to_ns(ev.seconds)
+        ns = min(to_ns(ev.seconds), MAX_NS - event_ns)  # the events' sum stays within MAX_S too
+        if ns < to_ns(ev.seconds) or not 0.0 <= ev.seconds <= MAX_S:
+            clamped_cmd = i if clamped_cmd < 0 else clamped_cmd
         events.append((i, ns, ev.category, ev.operator_dependent, ev.what))
         event_ns += ns
         operator_ns += ns if ev.operator_dependent else 0
@@ -140,7 +151,8 @@ def column(run: Run, cmds: Sequence[Command], index: ProgramIndex) -> Column:
     np.add.at(line_ns, index.cmd_line, cmd_ns)
     category_ns = {cat: int(tool_cat[:, k].sum()) for k, cat in enumerate(CATEGORIES)}
     tool_ns = {t: {cat: int(tool_cat[k, j]) for j, cat in enumerate(CATEGORIES)} for t, k in tool_pos.items()}
-    return Column(run, motion_ns, event_ns, line_ns, line_limit, cmd_ns, category_ns, tool_ns, operator_ns, events)
+    return Column(run, motion_ns, event_ns, line_ns, line_limit, cmd_ns, category_ns, tool_ns, operator_ns, events,
+                  clamped or clamped_cmd >= 0, clamped_cmd)
 
 
 def _dominant(ns: object, names: tuple[str, ...]) -> list[str]:
@@ -185,11 +197,16 @@ def line_rows(columns: list[Column], index: ProgramIndex, sources: SourceMap) ->
 
 
 def build_report(cmds: Sequence[Command], runs: Sequence[Run], sources: SourceMap, file: str, dialect: str,
-                 top_n: int = 10) -> TimingReport:
+                 top_n: int = 10, sink: DiagnosticSink | None = None) -> TimingReport:
     """The report for ``runs`` (the first is the primary column) over ``cmds``."""
     index = build_index(cmds)
     _span_starts_to_lines(index, sources)
     columns = [column(run, cmds, index) for run in runs]
+    for col in columns:
+        if col.clamped and sink is not None:
+            span = cmds[col.clamped_cmd].span if 0 <= col.clamped_cmd < len(cmds) else NO_SPAN
+            sink.emit(dg.TIME_CLAMPED, span, f"timing {col.run.label}: a time is too long or not finite; the "
+                      f"report counts at most {MAX_S:g} s of motion and {MAX_S:g} s of events")
     nominal = next((k for k, r in enumerate(runs) if r.nominal), None)
     return TimingReport(file, dialect, columns, nominal, line_rows(columns, index, sources), index, top_n)
 

@@ -36,8 +36,16 @@ EVENT_LIMITS: tuple[str, ...] = ("program", "machine", "operator")
 LIMIT_KEYS: tuple[str, ...] = MOTION_LIMITS + EVENT_LIMITS
 
 
+MAX_S = 1e8
+"""Longest trajectory, and longest sum of events, a report counts (about three years): longer
+or non-finite times (from absurd feeds or dwells) are clamped, so integer sums never overflow."""
+
+
 def to_ns(t_s: float) -> int:
-    return round(t_s * NS_PER_S)
+    """Seconds to integer nanoseconds, clamped to ``[0, MAX_S]`` (NaN counts as 0)."""
+    if not t_s > 0.0:
+        return 0
+    return round(min(t_s, MAX_S) * NS_PER_S)
 
 
 def to_s(t_ns: int) -> float:
@@ -82,6 +90,8 @@ class Column:
     tool_ns: dict[int, dict[str, int]]  # tool -> category -> ns
     operator_ns: int  # time of operator-dependent events (included in the total)
     event_list: list[tuple[int, int, str, bool, str]]  # (cmd, ns, category, operator-dependent, what)
+    clamped: bool = False  # some time exceeded MAX_S or was not finite
+    clamped_cmd: int = -1  # the first command concerned (-1: unknown)
 
     @property
     def total_ns(self) -> int:
