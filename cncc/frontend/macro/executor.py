@@ -171,6 +171,7 @@ class Executor:
                               f"recursion? (--max-steps raises the budget)")
                     break
                 self.block = block
+                self.it.source_id = fr.unit.source.source_id
                 try:
                     self._run_block(fr, i, block)
                 except MacroError as exc:
