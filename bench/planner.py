@@ -20,14 +20,16 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from cncc.diagnostics import DiagnosticSink  # noqa: E402
-from cncc.ir.commands import Arc, Command, Linear  # noqa: E402
-from cncc.ir.frame import IDENTITY_FRAME, Plane  # noqa: E402
-from cncc.ir.machine import MachineModel  # noqa: E402
-from cncc.machines import effective_corner_rule, load_machine  # noqa: E402
-from cncc.passes.plan import plan_commands  # noqa: E402
-from cncc.passes.verify import verify_trajectory  # noqa: E402
-from cncc.source import NO_SPAN  # noqa: E402
+import itertools
+
+from cncc.diagnostics import DiagnosticSink
+from cncc.ir.commands import Arc, Command, Linear
+from cncc.ir.frame import IDENTITY_FRAME, Plane
+from cncc.ir.machine import MachineModel
+from cncc.machines import effective_corner_rule, load_machine
+from cncc.passes.plan import plan_commands
+from cncc.passes.verify import verify_trajectory
+from cncc.source import NO_SPAN
 
 Pt = tuple[float, float, float]
 
@@ -37,7 +39,7 @@ def _v6(p: Pt) -> tuple[float, float, float, float, float, float]:
 
 
 def polyline(points: list[Pt], feed: float) -> list[Command]:
-    return [Linear(NO_SPAN, IDENTITY_FRAME, _v6(a), _v6(b), feed) for a, b in zip(points[:-1], points[1:], strict=True)]
+    return [Linear(NO_SPAN, IDENTITY_FRAME, _v6(a), _v6(b), feed) for a, b in itertools.pairwise(points)]
 
 
 def cam_path(n_segments: int) -> list[Command]:
@@ -103,7 +105,8 @@ def main() -> None:
     for level in (1, 2):
         cycle, elapsed, bad = timed_plan(cam, machine, level)
         violations += bad
-        print(f"    -O{level}: {n / elapsed:10,.0f} segments/s  ({elapsed:.2f} s, cycle {cycle:.1f} s, {bad} violations)")
+        print(f"    -O{level}: {n / elapsed:10,.0f} segments/s  ({elapsed:.2f} s, cycle {cycle:.1f} s, "
+              f"{bad} violations)")
     print("(b) -O2 / -O3 cycle time       (c) -O2 / exact stop   -O2 / -O1")
     stop_machine = load_machine("generic-mill", {"corner_rule": "exact-stop"})
     for name, cmds in short_paths().items():
@@ -114,7 +117,7 @@ def main() -> None:
         if args.quick:
             r23 = "   n/a"
         else:
-            t3, e3, b3 = timed_plan(cmds, machine, 3)
+            t3, _e3, b3 = timed_plan(cmds, machine, 3)
             violations += b3
             r23 = f"{t2 / t3:6.3f}"
         print(f"    {name:22s} {r23}   (O2 {t2:6.3f} s)   {t2 / ts:6.3f}       {t2 / t1:6.3f}")
