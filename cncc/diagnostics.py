@@ -79,6 +79,13 @@ G53_INCREMENTAL = _define("W0216", W, "G53 in incremental mode is ignored")
 AFTER_END = _define("N0217", N, "blocks after the program end are not executed")
 DECIMAL_P_DWELL = _define("W0218", W, "G04 P takes integer milliseconds; the fraction is dropped")
 
+# --- E025x: dialect conformance (issue 11: grbl, LinuxCNC, SERIES 8, detection) ----------
+CONTROLLER_REJECTS = _define("E0250", E, "the controller rejects the block; the message gives its own error text")
+DIALECT_GUESSED = _define("N0251", N, "no -x given: the dialect was guessed from the file name and its contents")
+SOURCE_INCONSISTENT = _define("W0252", W, "the controller's manual contradicts itself here; a dialect option decides")
+INVALID_ARC = _define("E0253", E, "an arc the dialect cannot make (SERIES 8: signed I/J or more than one quadrant)")
+DIALECT_IGNORED = _define("W0254", W, "a word or code the dialect's controller accepts and ignores")
+
 # --- E04xx: canned cycles and hole patterns ----------------------------------------
 CYCLE_NO_R = _define("E0401", E, "a drilling block without an R level")
 CYCLE_NO_BOTTOM = _define("E0402", E, "a drilling block without a hole bottom (Z)")
@@ -126,6 +133,11 @@ MACRO_BAD_VALUE = _define("E0322", E, "a macro value that is not a finite number
 MACRO_INPUT_TIMEOUT = _define("E0323", E, "a wait for an input that the --io file never makes valid")
 MACRO_BAD_IO_FILE = _define("E0324", E, "the --io file is malformed")
 MACRO_NOT_SUPPORTED = _define("E0325", E, "a macro feature cncc does not implement")
+
+# --- E035x: LinuxCNC O-words and named parameters (cncc/frontend/linuxcnc) ------------------
+OWORD_STRUCTURE = _define("E0350", E, "O-word control flow out of order (endwhile without while, no endsub ...)")
+OWORD_NO_SUB = _define("E0351", E, "a call of an O-word subroutine that is neither defined nor found in an -I folder")
+NAMED_UNDEFINED = _define("E0352", E, "a named parameter is read before it was set")
 
 # --- E05xx: frames and compensation ------------------------------------------------
 ARC_REPAIRED = _define("W0511", W, "an arc's centre was moved to make its radii agree")

@@ -67,9 +67,18 @@ class Dialect:
     default_feed_mm_min: float
     default_feed_mm_rev: float
     raw: dict[str, Any]
+    # What the controller rejects, with its reason: keys are codes ("G41", "M98") or
+    # address letters ("Q", "#"); values the controller's own reason (LSP, translator).
+    unsupported: dict[str, str] = field(default_factory=dict)
 
     def code(self, letter: str, tenths: int) -> CodeDef | None:
         return self.codes.get((letter, tenths))
+
+    def unsupported_reason(self, letter: str, tenths: int | None = None) -> str | None:
+        """Why the controller rejects ``letter`` (an address) or code ``letter``+``tenths``; None if it does not."""
+        if tenths is None:
+            return self.unsupported.get(letter)
+        return self.unsupported.get(code_name(letter, tenths))
 
     def option(self, key: str, default: Any = None) -> Any:
         return self.options.get(key, default)
@@ -121,6 +130,14 @@ def _codes(raw: dict[str, Any], letter: str) -> dict[tuple[str, int], CodeDef]:
     return out
 
 
+def _unsupported_key(key: str) -> str:
+    """``"g1"`` -> ``"G01"``, ``"G59.1"`` stays, ``"q"`` -> ``"Q"``."""
+    key = key.strip().upper()
+    if len(key) > 1 and key[0] in "GM" and key[1:].replace(".", "", 1).isdigit():
+        return code_name(key[0], code_tenths(key[1:]))
+    return key
+
+
 def parse_dialect(raw: dict[str, Any]) -> Dialect:
     try:
         name = str(raw["name"])
@@ -147,6 +164,7 @@ def parse_dialect(raw: dict[str, Any]) -> Dialect:
         default_feed_mm_min=float(raw.get("default_feed_mm_min", 0.0)),
         default_feed_mm_rev=float(raw.get("default_feed_mm_rev", 0.0)),
         raw=raw,
+        unsupported={_unsupported_key(str(k)): str(v) for k, v in raw.get("unsupported", {}).items()},
     )
 
 

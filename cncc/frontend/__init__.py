@@ -30,6 +30,10 @@ def lower(src: SourceFile, dialect: Dialect, sink: DiagnosticSink,
     command-line options: ``-D`` presets, ``-I`` folders, the step budget ...).
     """
     opts = options or InterpOptions()
+    if dialect.raw.get("checker") or dialect.macro_flavour == "linuxcnc":  # grbl's checks, LinuxCNC O-words
+        from cncc.frontend.dialect_front import lower_checked
+
+        return lower_checked(src, dialect, sink, opts, macro)
     if is_straight_line(src.text, dialect):
         return lower_straight(src, dialect, sink, opts)
     if needs_executor(src.text, dialect):

@@ -217,6 +217,7 @@ def check_target(a: Analysis, check: Callable[[], None]) -> None:
                 ok = seen[key] = _supports(target, tok.text, tenths, cdef.op, cdef.cycle, cdef.index)
             if not ok:
                 what = cdef.summary.split(":")[0].split(";")[0].rstrip(".") or cdef.op
+                why = target.unsupported_reason(tok.text, tenths)  # the target controller's own reason
                 a.sink.emit(dg.TARGET_UNSUPPORTED, Span(0, tok.start, tok.end),
-                            f"{target.name} cannot run {cdef.name} ({what})")
+                            f"{target.name} cannot run {cdef.name} ({what})" + (f": {why}" if why else ""))
 

@@ -1,0 +1,270 @@
+"""Handlers of the RS274/NGC operations that LinuxCNC, grbl and SERIES 8 share.
+
+Registered in :data:`cncc.frontend.ops.HANDLERS` under their own op names, so the
+Fanuc-family meaning of a code (``data_input`` for SYNTEC's G10, ``home`` for G28
+through the machine's reference) stays untouched:
+
+- ``exact_path_mode`` (LinuxCNC/grbl G61), ``continuous_tolerance`` (G64 P Q),
+  ``motion_off`` (G80 as motion-mode cancel);
+- ``arc_absolute`` / ``arc_incremental`` (G90.1 / G91.1 arc centre modes);
+- ``length_dynamic`` (G43.1: the axis words are the offset);
+- ``set_origin_clear`` / ``set_origin_suspend`` / ``set_origin_restore`` (G92.1/.2/.3);
+- ``data_input_rs274`` (G10 L1/L2/L10/L11/L20 with LinuxCNC's meaning);
+- ``home_stored`` / ``home_stored2`` / ``store_home`` / ``store_home2`` (G28/G30 to a
+  stored position, G28.1/G30.1 storing it);
+- ``inverse_time`` (G93: F is 1/minutes, resolved to a path feed per block).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field, replace
+from typing import TYPE_CHECKING
+from weakref import WeakKeyDictionary
+
+from cncc import diagnostics as dg
+from cncc.dialects import CodeDef
+from cncc.frontend import ops
+from cncc.frontend.ops import AXES, handler, target
+from cncc.ir import ZERO6, PathMode, Rapid, SetMode, Vec6
+
+if TYPE_CHECKING:
+    from cncc.frontend.interp import BlockContext, Interpreter
+
+
+@dataclass(slots=True)
+class Rs274State:
+    """RS274 modes the shared :class:`~cncc.frontend.modal.ModalState` does not hold."""
+
+    arc_absolute: bool = False  # G90.1
+    inverse_time: bool = False  # G93
+    g92_saved_mm: Vec6 = ZERO6  # parameters 5211-5216 (G92.2 keeps them, G92.3 restores)
+    stored_mm: dict[int, Vec6] = field(default_factory=dict)  # G28 (1) / G30 (2) in machine coordinates
+
+
+_STATES: WeakKeyDictionary[Interpreter, Rs274State] = WeakKeyDictionary()
+
+
+def state(it: Interpreter) -> Rs274State:
+    st = _STATES.get(it)
+    if st is None:
+        st = _STATES[it] = Rs274State()
+    return st
+
+
+def _vec(values: list[float]) -> Vec6:
+    return (values[0], values[1], values[2], values[3], values[4], values[5])
+
+
+# ---- path modes ------------------------------------------------------------------------------
+def _set_path(it: Interpreter, ctx: BlockContext, mode: PathMode, tol_mm: float | None) -> None:
+    new = it.intern_motion(replace(it.modal.path, mode=mode, blend_tolerance_mm=tol_mm))
+    if new != it.modal.path:
+        it.modal = it.modal.with_(path=new)
+        ctx.out.append(SetMode(ctx.span, it.frame, "path_mode", mode))
+
+
+@handler("exact_path_mode")
+def _g61(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
+    _set_path(it, ctx, PathMode.EXACT_PATH, None)
+
+
+@handler("exact_stop_mode_rs274")
+def _g61_1(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
+    _set_path(it, ctx, PathMode.EXACT_STOP, None)
+
+
+@handler("continuous_tolerance")
+def _g64(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
+    pw = ctx.words.get("P")
+    tol = it.reader.length_mm(pw) if pw is not None else None
+    if tol is not None and tol < 0:
+        it.emit_error(dg.NUMBER_RANGE, it.word_span(pw), "G64 P must not be negative")  # type: ignore[arg-type]
+        return
+    _set_path(it, ctx, PathMode.CONTINUOUS, tol)
+
+
+@handler("motion_off")
+def _g80(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
+    it.modal = it.modal.with_(motion="none", cycle="")
+
+
+def _no_motion(it: Interpreter, ctx: BlockContext, end: Vec6) -> None:
+    it.emit_error(dg.CONTROLLER_REJECTS, ctx.span, "axis words with no motion mode in force (G80)")
+
+
+ops.MOTIONS.setdefault("none", _no_motion)
+
+
+# ---- arc centre mode (a block hook rewrites absolute I/J/K as offsets) -----------------------
+@handler("arc_absolute", "arc_incremental")
+def _arc_mode(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
+    state(it).arc_absolute = c.op == "arc_absolute"
+
+
+def _absolute_centres(it: Interpreter, ctx: BlockContext) -> None:
+    st = _STATES.get(it)
+    if st is None or not st.arc_absolute or it.modal.motion not in ("arc_cw", "arc_ccw"):
+        return
+    k = it.frame.units.mm_per_unit
+    for letter, axis in (("I", 0), ("J", 1), ("K", 2)):
+        w = ctx.words.get(letter)
+        if w is not None:
+            ctx.words[letter] = replace(w, value=w.value - it.pos[axis] / k, point=True)
+
+
+ops.BLOCK_HOOKS.append(_absolute_centres)
+
+
+# ---- tool length -------------------------------------------------------------------------------
+@handler("length_dynamic")
+def _g43_1(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
+    ctx.axis_used = True
+    zw = ctx.words.get("Z")
+    value = it.reader.length_mm(zw) if zw is not None else 0.0
+    if value != it.frame.tool_length_mm:
+        it.set_frame(replace(it.frame, tool_length_mm=value, tool_length_index=0))
+        ctx.out.append(SetMode(ctx.span, it.frame, "tool_length_offset", value))
+
+
+# ---- G92.1 / G92.2 / G92.3 -------------------------------------------------------------------
+def _set_g92(it: Interpreter, ctx: BlockContext, shift: Vec6) -> None:
+    if shift != it.frame.g92_offset_mm:
+        it.set_frame(replace(it.frame, g92_offset_mm=shift))
+        ctx.out.append(SetMode(ctx.span, it.frame, "g92_offset", shift))
+
+
+@handler("set_origin_clear", "set_origin_suspend", "set_origin_restore")
+def _g92_x(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
+    st = state(it)
+    if c.op == "set_origin_restore":
+        _set_g92(it, ctx, st.g92_saved_mm)
+        return
+    if c.op == "set_origin_clear":
+        st.g92_saved_mm = ZERO6
+    _set_g92(it, ctx, ZERO6)
+
+
+@handler("set_origin_rs274")
+def _g92(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
+    """G92 as LinuxCNC has it: the shift is remembered in the parameters for G92.3."""
+    ctx.axis_used = True
+    shift = list(it.frame.g92_offset_mm)
+    for i, letter in enumerate(AXES):
+        w = ctx.words.get(letter)
+        if w is not None:
+            shift[i] += it.pos[i] - it.reader.axis_value(w)
+    state(it).g92_saved_mm = _vec(shift)
+    _set_g92(it, ctx, _vec(shift))
+
+
+# ---- G10 with LinuxCNC's tables --------------------------------------------------------------
+@handler("data_input_rs274")
+def _g10(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
+    from cncc.frontend.rs274_g10 import run_g10
+
+    ctx.axis_used = True
+    run_g10(it, ctx, c)
+
+
+# ---- G28 / G30 to a stored position --------------------------------------------------------
+def _stored(it: Interpreter, which: int) -> Vec6:
+    st = state(it)
+    got = st.stored_mm.get(which)
+    if got is not None:
+        return got
+    refs = it.options.reference_mm
+    return refs[which - 1] if which - 1 < len(refs) else refs[0]
+
+
+@handler("home_stored", "home_stored2")
+def _g28(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
+    ctx.axis_used = True
+    which = 1 if c.op == "home_stored" else 2
+    if any(k in ctx.words for k in AXES):
+        mid = target(it, ctx)
+        ctx.out.append(Rapid(ctx.span, it.frame, it.pos, mid, it.modal.path, origin=c.name))
+        it.pos = mid
+    ref, off = _stored(it, which), it.frame.total_offset_mm
+    tool = it.frame.tool_length_mm
+    end = _vec([ref[i] - off[i] - (tool if i == 2 else 0.0) for i in range(6)])
+    ctx.out.append(Rapid(ctx.span, it.frame, it.pos, end, it.modal.path, origin=f"{c.name} ref"))
+    it.pos = end
+
+
+@handler("store_home", "store_home2")
+def _g28_1(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
+    ctx.axis_used = True
+    off = it.frame.total_offset_mm
+    tool = it.frame.tool_length_mm
+    machine = _vec([it.pos[i] + off[i] + (tool if i == 2 else 0.0) for i in range(6)])
+    state(it).stored_mm[1 if c.op == "store_home" else 2] = machine
+
+
+# ---- G93 inverse time --------------------------------------------------------------------------
+@handler("inverse_time")
+def _g93(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
+    st = state(it)
+    if not st.inverse_time:
+        st.inverse_time = True
+        it.modal = it.modal.with_(per_rev=False, path=it.intern_motion(replace(it.modal.path, inverse_time=True)))
+        ctx.out.append(SetMode(ctx.span, it.frame, "feed_mode", "inverse_time"))
+
+
+@handler("feed_per_min_rs274", "feed_per_rev_rs274")
+def _g94(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
+    st = state(it)
+    per_rev = c.op == "feed_per_rev_rs274"
+    if st.inverse_time or per_rev != it.modal.per_rev:
+        st.inverse_time = False
+        it.modal = it.modal.with_(per_rev=per_rev, path=it.intern_motion(replace(it.modal.path,
+                                                                                   inverse_time=False)))
+        ctx.out.append(SetMode(ctx.span, it.frame, "feed_mode", "per_rev" if per_rev else "per_min"))
+
+
+def _inverse_time_feed(it: Interpreter, ctx: BlockContext) -> None:
+    """In G93 the block's F (1/min) becomes the path feed length x F for this block."""
+    st = _STATES.get(it)
+    if st is None or not st.inverse_time or it.modal.motion not in ("linear", "arc_cw", "arc_ccw"):
+        return
+    if not any(k in ctx.words for k in AXES):
+        return
+    fw = ctx.words.get("F")
+    if fw is None or fw.value <= 0:
+        it.emit_error(dg.NO_FEED, ctx.span, "in inverse time feed mode (G93) every feed move needs its own F")
+        it.modal = it.modal.with_(feed=None)
+        return
+    end = target(it, ctx)
+    length_mm = _path_length_mm(it, ctx, end)
+    it.modal = it.modal.with_(feed=fw.value * length_mm / it.frame.units.mm_per_unit)
+
+
+def _path_length_mm(it: Interpreter, ctx: BlockContext, end: Vec6) -> float:
+    from cncc.frontend import arcs
+
+    start = it.pos
+    if it.modal.motion == "linear":
+        chord = math.dist(start[:3], end[:3])
+        return chord if chord > 0 else math.dist(start[3:], end[3:])
+    p = it.frame.plane
+    cw = it.modal.motion == "arc_cw"
+    rw = ctx.words.get("R")
+    if rw is not None:
+        centre, _ = arcs.center_from_radius(start, end, p, it.reader.length_mm(rw), cw, 1e-3)
+    else:
+        names = "IJK"
+        o1, o2 = ctx.words.get(names[p.first]), ctx.words.get(names[p.second])
+        centre = arcs.center_from_offsets(start, p, it.reader.length_mm(o1) if o1 else 0.0,
+                                          it.reader.length_mm(o2) if o2 else 0.0)
+    i, j = p.first, p.second
+    r = math.hypot(start[i] - centre[i], start[j] - centre[j])
+    a0 = math.atan2(start[j] - centre[j], start[i] - centre[i])
+    a1 = math.atan2(end[j] - centre[j], end[i] - centre[i])
+    sweep = ((a0 - a1) if cw else (a1 - a0)) % (2 * math.pi)
+    if sweep <= 1e-12:
+        sweep = 2 * math.pi
+    return math.hypot(r * sweep, end[p.normal] - start[p.normal])
+
+
+ops.BLOCK_HOOKS.append(_inverse_time_feed)
+

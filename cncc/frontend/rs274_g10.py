@@ -1,0 +1,98 @@
+"""G10 with the meaning LinuxCNC (and grbl, for L2/L20) gives it.
+
+- ``L1 P<tool>``: tool table entry: Z (and X ...) length offsets, R radius.
+- ``L10 P<tool>``: the tool's offsets so that the current position has the given
+  coordinates; ``L11`` the same measured in G59.3 (system 9).
+- ``L2 P<0-9>``: a work system's offsets (P0 the active one), R its XY rotation.
+- ``L20 P<0-9>``: a work system's offsets so that the current position has the
+  given coordinates.
+
+The dialect's ``options.g10_systems`` is the number of work systems (9 LinuxCNC, 6
+grbl); errors use the dialect's controller texts in ``[errors]`` when it has them.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+from typing import TYPE_CHECKING
+
+from cncc import diagnostics as dg
+from cncc.dialects import CodeDef
+from cncc.frontend.ops import AXES
+from cncc.ir import SetMode, Vec6
+
+if TYPE_CHECKING:
+    from cncc.frontend.interp import BlockContext, Interpreter
+
+
+def controller_error(it: Interpreter, key: str, default: str) -> str:
+    """The controller's own text for error ``key`` (dialect ``[errors]``), else ``default``."""
+    return str(it.dialect.raw.get("errors", {}).get(key, default))
+
+
+def _fail(it: Interpreter, ctx: BlockContext, key: str, default: str) -> None:
+    it.emit_error(dg.CONTROLLER_REJECTS, ctx.span, controller_error(it, key, default))
+
+
+def run_g10(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
+    lw, pw = ctx.words.get("L"), ctx.words.get("P")
+    table = int(lw.value) if lw is not None else -1
+    if table not in (1, 2, 10, 11, 20):
+        _fail(it, ctx, "g10_l", "Line with G10 does not have L1, L10, L11, L2, or L20")
+        return
+    if pw is None:
+        _fail(it, ctx, "g10_p", "Line with G10 does not have P word")
+        return
+    p = round(pw.value)
+    if table in (1, 10, 11):
+        if p < 1 or p != pw.value:
+            _fail(it, ctx, "g10_tool", "Invalid tool number")
+            return
+        _tool_entry(it, ctx, table, p)
+        return
+    systems = int(it.dialect.option("g10_systems", 9))
+    if p < 0 or p > systems or p != pw.value:
+        _fail(it, ctx, "g10_p_range", f"P value out of range with G10 L{table}")
+        return
+    _work_entry(it, ctx, table, p or it.frame.work_index)
+
+
+def _tool_entry(it: Interpreter, ctx: BlockContext, table: int, tool: int) -> None:
+    zw, rw = ctx.words.get("Z"), ctx.words.get("R")
+    lengths, radii = it.options.tool_lengths_mm, it.options.tool_radii_mm
+    if zw is not None:
+        z = it.reader.length_mm(zw)
+        if table == 1:
+            lengths[tool] = z
+        else:
+            f = it.frame
+            base = f.total_offset_mm[2]
+            if table == 11:
+                base = it.options.work_offsets_mm.get(9, (0.0,) * 6)[2]
+            machine_z = f.total_offset_mm[2] + it.pos[2] + f.tool_length_mm
+            lengths[tool] = machine_z - base - z
+    if rw is not None:
+        radii[tool] = abs(it.reader.length_mm(rw))
+    ctx.out.append(SetMode(ctx.span, it.frame, "tool_table", (tool, lengths.get(tool, 0.0),
+                                                               2.0 * radii.get(tool, 0.0))))
+
+
+def _work_entry(it: Interpreter, ctx: BlockContext, table: int, index: int) -> None:
+    old = it.options.work_offsets_mm.get(index, (0.0,) * 6)
+    vals = list(old)
+    f = it.frame
+    for k, letter in enumerate(AXES):
+        w = ctx.words.get(letter)
+        if w is None:
+            continue
+        v = it.reader.axis_value(w)
+        if table == 2:
+            vals[k] = v
+        else:  # L20: the current position gets the value v
+            machine = f.total_offset_mm[k] + it.pos[k]
+            vals[k] = machine - f.local_offset_mm[k] - f.g92_offset_mm[k] - v
+    new: Vec6 = (vals[0], vals[1], vals[2], vals[3], vals[4], vals[5])
+    it.options.work_offsets_mm[index] = new
+    if f.work_index == index and new != f.work_offset_mm:
+        it.set_frame(replace(f, work_offset_mm=new))
+        ctx.out.append(SetMode(ctx.span, it.frame, "g5x_offset", index))
