@@ -28,8 +28,8 @@ def _parser() -> argparse.ArgumentParser:
     p.add_argument("-O", dest="opt_level", type=int, choices=range(4), default=2, metavar="LEVEL",
                    help="planner level: -O0 nominal, -O1 trapezoid, -O2 jerk-limited (default), -O3 optimal")
     p.add_argument("-f", dest="flags", action="append", default=[], metavar="FLAG",
-                   help="-fsyntax-only, -fstrict, -frepair-arcs, -fno-block-delete, or a dialect option "
-                        "-fNAME=VALUE (e.g. -frapid_type=independent)")
+                   help="-fsyntax-only, -fstrict, -frepair-arcs, -fno-block-delete, -fline-numbers, "
+                        "or a dialect option -fNAME=VALUE (e.g. -frapid_type=independent)")
     p.add_argument("-W", dest="warnings", action="append", default=[], metavar="WARN",
                    help="-Werror turns warnings into errors")
     p.add_argument("--offsets", dest="offsets_file", help="work offsets table (TOML)")
@@ -43,6 +43,14 @@ def _parser() -> argparse.ArgumentParser:
                    help="--emit=pulses writer (npz needs -o FILE; default: vcd)")
     p.add_argument("--pulse-mode", default="exact", choices=["exact", "interp"],
                    help="--emit=pulses: exact step times, or SZGH 2 ms interpolation (default: exact)")
+    t = p.add_argument_group("translation (--emit=gcode -t DIALECT, docs/translation.md)")
+    t.add_argument("--units", choices=["mm", "inch"], default="", help="write every length in this unit "
+                   "(default: as programmed)")
+    t.add_argument("--decimals-mm", type=int, choices=range(1, 7), metavar="N", help="decimals in mm (default 3)")
+    t.add_argument("--decimals-inch", type=int, choices=range(1, 7), metavar="N",
+                   help="decimals in inch (default 4)")
+    t.add_argument("--keep-subprograms", action="store_true",
+                   help="keep subprogram calls where the target can call them (not implemented yet: noted)")
     m = p.add_argument_group("macros and subprograms")
     m.add_argument("-D", dest="defines", action="append", default=[], metavar="#N=VALUE",
                    help="preset a macro variable, e.g. -D#100=5 (repeatable)")
@@ -120,12 +128,16 @@ def build_options(ns: argparse.Namespace, error: Any) -> Any:
             opts.repair_arcs = True
         elif flag == "no-block-delete":
             opts.block_delete = False
+        elif flag == "line-numbers":  # --emit=gcode: N10, N20 ... on every block
+            opts.line_numbers = True
         elif "=" in flag:
             key, _, val = flag.partition("=")
             opts.dialect_options[key.replace("-", "_")] = _value(val)
         else:
             error(f"unknown flag -f{flag}")
     _macro_options(opts, ns, error)
+    opts.units, opts.keep_subprograms = ns.units, ns.keep_subprograms
+    opts.decimals_mm, opts.decimals_inch = ns.decimals_mm, ns.decimals_inch
     for w in ns.warnings:
         if w == "error":
             opts.werror = True

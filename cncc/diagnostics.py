@@ -140,7 +140,21 @@ OWORD_NO_SUB = _define("E0351", E, "a call of an O-word subroutine that is neith
 NAMED_UNDEFINED = _define("E0352", E, "a named parameter is read before it was set")
 
 # --- E05xx: frames and compensation ------------------------------------------------
+TRANSFORM_WORDS = _define("E0501", E, "a frame or compensation code lacks a word it needs, or a word is out of range")
+SCALED_ARC_ELLIPSE = _define("E0502", E, "a transform would turn an arc into an ellipse or out of its plane")
+COMP_ON_ARC = _define("E0503", E, "cutter compensation is started or cancelled on an arc (only G00/G01 may)")
+COMP_GOUGE = _define("E0504", E, "cutter compensation interference: the offset path runs against the programmed one")
+COMP_ARC_TOO_SMALL = _define("E0505", E, "an inside arc whose radius is smaller than the tool radius")
+COMP_NO_INTERSECTION = _define("E0506", E,
+                              "an inside corner whose offset elements do not meet (no room for the tool)")
+COMP_CORNER_ARC = _define("W0507", W, "an outside corner whose offset elements do not meet; an arc is used")
+COMP_LOOKAHEAD = _define("W0508", W, "too many moves without plane motion during compensation (over- or undercut)")
+COMP_PLANE_CHANGE = _define("E0509", E, "the plane changed while cutter compensation is active")
+TOOL_OFFSET_IN_COMP = _define("E0510", E, "G45-G48 tool offset while cutter compensation is active")
 ARC_REPAIRED = _define("W0511", W, "an arc's centre was moved to make its radii agree")
+DATA_INPUT = _define("E0512", E, "G10 with a table (L) or entry (P) that cncc does not know")
+OFFSET_NOT_IN_TABLE = _define("W0513", W, "an H or D number that the tool table does not have; 0 is used")
+TRANSFORM_DEFAULT = _define("W0514", W, "a frame code without a value the manual leaves to a parameter; a default used")
 
 # --- E06xx: machine models, planning, verification --------------------------------
 BAD_MACHINE = _define("E0601", E, "a machine model file or override is malformed (the message names the key)")
@@ -167,6 +181,27 @@ SOFT_LIMIT = _define("E0703", E, "the trajectory crosses an axis soft limit")
 BAD_PITCH_TABLE = _define("E0704", E, "a pitch-error table would make the axis move backwards; the table is ignored")
 DIR_SETUP_DELAY = _define("W0705", W, "a step was delayed to respect the direction set-up time")
 AXIS_NOT_IN_MACHINE = _define("W0706", W, "a trajectory axis is not in the machine model; default step output used")
+
+# --- E08xx: translation (cncc/backends/gcode, --emit=gcode -t) --------------------
+# The N08xx notes say what cncc did because the target cannot (or so the output is
+# exact); under -Werror they are errors, for users who need the target to do it.
+XL_ROTATION = _define("N0801", N, "coordinate rotation (G68) is written as rotated coordinates")
+XL_SCALING = _define("N0802", N, "scaling is written as scaled coordinates")
+XL_MIRROR = _define("N0803", N, "the programmable mirror is written as mirrored coordinates")
+XL_POLAR = _define("N0804", N, "polar coordinates are written as Cartesian coordinates")
+XL_COMP = _define("N0805", N, "cutter radius compensation is written as the compensated tool path")
+XL_CYCLE_EXPANDED = _define("N0806", N, "a canned cycle is written as moves (the target has no equivalent cycle)")
+XL_PATTERN = _define("N0807", N, "a hole pattern is written as a list of holes")
+XL_SUBPROGRAMS = _define("N0808", N, "subprograms and macros are written flattened")
+XL_FOLDED = _define("N0809", N, "an offset the target cannot set is folded into the coordinates")
+XL_NO_CODE = _define("W0810", W, "the target has no code for an operation; it is written as a comment")
+XL_LINE_LENGTH = _define("W0811", W, "a line is longer than the target control reads")
+XL_LINE_NUMBER = _define("W0812", W, "a line number beyond the target's largest N")
+XL_PROGRAM_NUMBER = _define("W0813", W, "a program number outside the target's range")
+XL_NESTING = _define("W0814", W, "subprograms nest deeper than the target allows")
+XL_WORD_RANGE = _define("W0815", W, "a word value beyond the target's range")
+XL_TAP_UNSYNCED = _define("W0816", W, "a tapping cycle is written as plain moves (not spindle-synchronised)")
+XL_ARC_SPLIT = _define("N0817", N, "arcs are split into pieces the target accepts")
 
 # --- language server (cncc/lsp): target checks and the analysis budget ----------
 TARGET_UNSUPPORTED = _define("W0890", W, "a code the target dialect has no counterpart for")

@@ -55,6 +55,12 @@ class Options:
     write_dir: str | None = None
     compare: str = ""  # timing report columns: "O0,O1,O2" or machine names (NAME@O1)
     annotate_time: bool = False  # timing: the program with elapsed times as comments
+    # translation (--emit=gcode -t, cncc/backends/gcode, docs/translation.md)
+    units: str = ""  # --units: "" as programmed, "mm" or "inch"
+    line_numbers: bool = False  # -fline-numbers
+    keep_subprograms: bool = False  # --keep-subprograms (not implemented: noted)
+    decimals_mm: int | None = None  # --decimals-mm
+    decimals_inch: int | None = None  # --decimals-inch
     pulse_format: str = "vcd"  # --emit=pulses: vcd | csv | npz | queue
     pulse_mode: str = "exact"  # --emit=pulses: exact | interp (SZGH 2 ms interpolation)
 
@@ -243,9 +249,36 @@ def path_passes(cmds: Iterable[Command], dialect: Dialect, machine: MachineModel
     ctx = PassContext(sink=sink, dialect=dialect, machine=machine)
     tol_abs = float(dialect.option("arc_radius_tolerance_mm", ArcCheck.abs_tol_mm))
     tol_rel = float(dialect.option("arc_radius_tolerance_rel", ArcCheck.rel_tol))
-    passes = [ExpandCycles(), *frame_passes(dialect, machine_coords=opts.emit in MACHINE_EMITS),
+    keep: frozenset[str] = frozenset()
+    if opts.emit == "gcode" and not opts.expand:  # translation: keep the cycles the target runs alike
+        cmds, keep = translation_prepare(cmds, dialect, opts, sink)
+    passes = [ExpandCycles(keep=keep), *frame_passes(dialect, machine_coords=opts.emit in MACHINE_EMITS),
               ArcCheck(abs_tol_mm=max(tol_abs, ArcCheck.abs_tol_mm), rel_tol=tol_rel, repair=opts.repair_arcs)]
     return run_pipeline(passes, cmds, ctx)
+
+
+def output_dialect(dialect: Dialect, opts: Options, sink: DiagnosticSink) -> Dialect | None:
+    """The dialect --emit=gcode writes: -t, else the input dialect."""
+    if not opts.target or opts.target == dialect.name:
+        return dialect
+    return resolve_dialect(Options(dialect=opts.target), sink)
+
+
+def translation_prepare(cmds: Iterable[Command], dialect: Dialect, opts: Options,
+                        sink: DiagnosticSink) -> tuple[Iterable[Command], frozenset[str]]:
+    """Cycles the target cannot keep expanded now (before the transforms), notes for what cncc applies."""
+    from cncc.backends.gcode import make_target
+    from cncc.backends.gcode.translate import kept_cycle_kinds, note, prepare
+    from cncc.passes.expand_cycles import expand
+
+    target = output_dialect(dialect, opts, sink)
+    if target is None:
+        return cmds, frozenset()
+    tgt = make_target(target)
+    if opts.keep_subprograms:
+        note(sink, dg.XL_SUBPROGRAMS, NO_SPAN, "--keep-subprograms: cncc cannot keep subprogram calls yet; "
+                                               "the output is flattened")
+    return prepare(cmds, tgt, expand, sink), kept_cycle_kinds(tgt)
 
 
 def frame_passes(dialect: Dialect, machine_coords: bool) -> list[Any]:
@@ -320,21 +353,22 @@ def run_backend(cmds: Iterator[Command], src: SourceFile, sources: SourceMap, di
 
         return dump_ir(cmds, sources)
     if opts.emit == "gcode":
-        from cncc.backends.gcode import emit_gcode
+        from cncc.backends.gcode import EmitOptions, emit_gcode
+        from cncc.passes.expand_cycles import expand
 
-        target = dialect
-        if opts.target:
-            t = resolve_dialect(Options(dialect=opts.target), sink)
-            if t is None:
-                return iter(())
-            target = t
+        target = output_dialect(dialect, opts, sink)
+        if target is None:
+            return iter(())
+        eopts = EmitOptions(decimals_mm=opts.decimals_mm, decimals_inch=opts.decimals_inch,
+                            line_numbers=opts.line_numbers, units=opts.units,
+                            same_dialect=target.name == dialect.name, expand_cycle=expand)
         if opts.expand and opts.annotate_time:  # -E --annotate-time
             from cncc.backends.timing import annotated_commands
 
             cmd_list = list(cmds)
             runs = timing_runs(cmd_list, machine, opts, sink)
             cmds = iter(annotated_commands(cmd_list, runs, sources, src.name, dialect))
-        return emit_gcode(cmds, target)
+        return emit_gcode(cmds, target, eopts, sink)
     if opts.emit == "timing":
         from cncc.backends.timing import timing_report
         from cncc.backends.timing.progress import track_source

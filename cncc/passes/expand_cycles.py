@@ -44,13 +44,14 @@ MANUAL_RETRACT = "operator: retract the tool by hand, then cycle start (G88)"
 @register
 @dataclass(frozen=True, kw_only=True)
 class ExpandCycles(Pass):
-    """Lower every canned cycle to primitive moves."""
+    """Lower every canned cycle to primitive moves (except the kinds in ``keep``)."""
 
     name: ClassVar[str] = "expand-cycles"
+    keep: frozenset[str] = frozenset()  # cycle kinds left whole (the G-code backend writes them)
 
     def run(self, cmds: Iterable[Command], ctx: PassContext) -> Iterator[Command]:
         for c in cmds:
-            if isinstance(c, Cycle):
+            if isinstance(c, Cycle) and c.kind.value not in self.keep:
                 yield from expand(c)
             else:
                 yield c

@@ -1,25 +1,47 @@
-"""Normalised G-code from IR commands.
+"""G-code in a target dialect from IR commands (``--emit=gcode``, ``-t``, ``-E``).
 
-One word order (G codes, axes, arc centre, F), explicit modes, coordinates always
-with a decimal point (so the least-input-unit rule never changes their meaning),
-absolute distances, and the target's comment syntax.  The output re-parses to the
-same IR motion (``tests/backends/test_gcode_roundtrip.py``).
+Consumes IR commands in program coordinates (after the path passes: cycles the
+target cannot keep expanded, transforms and cutter compensation applied); produces
+program lines for the target, looked up by canonical op in its tables
+(:mod:`cncc.backends.gcode.target`):
+
+* one word order: G codes, axes, arc words, cycle words, F; every motion block
+  names its motion code; absolute distances and feed per minute throughout (the IR
+  has resolved G91 and per-revolution feeds);
+* lengths always with a decimal point, so the least-input-unit rule never changes
+  their meaning; quantised to the output precision (3 decimals in mm, 4 in inch);
+* arcs in the forms the target reads (:mod:`cncc.backends.gcode.arcs`), the centre
+  offsets computed from the written numbers so that they re-parse exactly;
+* offsets the target cannot set are folded into the coordinates
+  (:mod:`cncc.backends.gcode.frames`); canned cycles kept whole are written with the
+  target's cycle codes (:mod:`cncc.backends.gcode.cycles`).
+
+The output re-parses in the target dialect to the same motion
+(``tests/backends/test_translate_roundtrip.py``).
 """
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Iterator
+from collections.abc import Callable, Iterable, Iterator
 from dataclasses import dataclass
 
+from cncc import diagnostics as dg
+from cncc.backends.gcode import cycles as cy
+from cncc.backends.gcode.arcs import ArcForm, helix_feed_ratio, split
+from cncc.backends.gcode.frames import TargetFrame, add, sub
+from cncc.backends.gcode.numbers import counts_text, fixed, quantize
+from cncc.backends.gcode.target import Target, make_target
+from cncc.diagnostics import DiagnosticSink
 from cncc.dialects import Dialect
 from cncc.ir import (
     Arc,
+    Aux,
     Command,
     Comment,
     Coolant,
     CoolantState,
+    Cycle,
     Dwell,
-    FeedRate,
     Frame,
     Linear,
     Message,
@@ -36,186 +58,406 @@ from cncc.ir import (
     ToolChange,
     Units,
     Vec6,
+    Wait,
 )
+from cncc.source import NO_SPAN, Span
 
 AXES = "XYZABC"
+_PLANE_OPS = {Plane.XY: "plane_xy", Plane.ZX: "plane_zx", Plane.YZ: "plane_yz"}
+_ARC_LETTERS = {Plane.XY: ("I", "J"), Plane.ZX: ("K", "I"), Plane.YZ: ("J", "K")}
+_SPINDLE_OPS = {SpindleState.CW: "spindle_cw", SpindleState.CCW: "spindle_ccw", SpindleState.OFF: "spindle_off",
+                SpindleState.ORIENT: "spindle_orient"}
+_COOLANT_OPS = {CoolantState.FLOOD: "coolant_flood", CoolantState.MIST: "coolant_mist",
+                CoolantState.OFF: "coolant_off"}
+_STOP_OPS = {StopKind.PROGRAM_STOP: "program_stop", StopKind.OPTIONAL_STOP: "optional_stop",
+             StopKind.PROGRAM_END: "program_end", StopKind.END_REWIND: "program_end_rewind"}
+ANGLE_DECIMALS = 4
 
 
 @dataclass(frozen=True, slots=True)
 class EmitOptions:
-    decimals_mm: int = 3
-    decimals_inch: int = 4
+    decimals_mm: int | None = None  # None: the target's default (3)
+    decimals_inch: int | None = None  # None: the target's default (4)
     line_numbers: bool = False
     line_step: int = 10
-
-
-class _Codes:
-    """Reverse lookup: op -> code name in the target dialect."""
-
-    def __init__(self, dialect: Dialect) -> None:
-        self.by_op: dict[str, str] = {}
-        self.work: dict[int, str] = {}
-        for cdef in sorted(dialect.codes.values(), key=lambda c: (c.letter, c.tenths)):
-            if cdef.op == "work":
-                self.work.setdefault(cdef.index, cdef.name)
-            self.by_op.setdefault(cdef.op, cdef.name)
-
-    def __call__(self, op: str) -> str:
-        return self.by_op.get(op, "")
+    units: str = ""  # "" as programmed, "mm" or "inch": convert
+    same_dialect: bool = True  # M codes without a known meaning are copied only within one dialect
+    expand_cycle: Callable[[Cycle], Iterable[Command]] | None = None  # for cycles the output cannot keep
 
 
 class GcodeEmitter:
-    def __init__(self, dialect: Dialect, options: EmitOptions | None = None) -> None:
-        self.dialect = dialect
+    def __init__(self, dialect: Dialect, options: EmitOptions | None = None,
+                 sink: DiagnosticSink | None = None) -> None:
+        self.t: Target = make_target(dialect)
         self.opt = options or EmitOptions()
-        self.codes = _Codes(dialect)
-        self.n = 0
-        self.units = Units.INCH if dialect.default_units == "inch" else Units.MM
+        self.sink = sink
+        self.dec_mm = self.t.decimals_mm if self.opt.decimals_mm is None else self.opt.decimals_mm
+        self.dec_inch = self.t.decimals_inch if self.opt.decimals_inch is None else self.opt.decimals_inch
+        forced = {"mm": Units.MM, "inch": Units.INCH}.get(self.opt.units)
+        self.forced = forced
+        self.units = forced or (Units.INCH if dialect.default_units == "inch" else Units.MM)
         self.plane = Plane.XY
-        self.motion = ""
         self.feed: float | None = None
-        self.frame: Frame | None = None
+        self.tf = TargetFrame()
+        self.fold: Vec6 | None = None
+        self.qpos: list[int] | None = None  # last written position, in output counts
+        self.cycle_initial: int | None = None  # counts of the initial level while a cycle is active
+        self.cycle_data: list[str] = []  # code and data words of the cycle in force
+        self.cycle_return = ""
+        self.n = 0
+        self.span: Span = NO_SPAN
+        self.warned: set[str] = set()
 
-    # -- formatting
-    def num(self, v_mm: float, axis: int = 0) -> str:
+    # ---- numbers --------------------------------------------------------------------------
+    @property
+    def decimals(self) -> int:
+        return self.dec_inch if self.units is Units.INCH else self.dec_mm
+
+    def counts(self, v_mm: float, axis: int = 0) -> int:
         if axis >= 3:
-            return _trim(f"{v_mm:.4f}")
-        v = v_mm / self.units.mm_per_unit
-        d = self.opt.decimals_inch if self.units is Units.INCH else self.opt.decimals_mm
-        return _trim(f"{v:.{d}f}")
+            return quantize(v_mm, ANGLE_DECIMALS)
+        return quantize(v_mm / self.units.mm_per_unit, self.decimals)
 
+    def text(self, counts: int, axis: int = 0) -> str:
+        return counts_text(counts, ANGLE_DECIMALS if axis >= 3 else self.decimals)
+
+    def length(self, v_mm: float) -> str:
+        return self.text(self.counts(v_mm))
+
+    # ---- blocks ------------------------------------------------------------------------------
     def block(self, words: list[str], comment: str = "") -> str:
         text = " ".join(w for w in words if w)
-        if comment:
-            text = (text + " " if text else "") + self.comment(comment)
-        if self.opt.line_numbers and words:
+        note = self.t.comment(comment) if comment else ""
+        if note:
+            text = f"{text} {note}" if text else note
+        if self.opt.line_numbers and text:
             self.n += self.opt.line_step
-            text = f"N{self.n} " + text
-        end = ";" if self.dialect.block_end == ";" and words else ""
-        return text + end + "\n"
+            if self.n > self.t.max_line_number:
+                self.warn(dg.XL_LINE_NUMBER, f"N{self.n} is beyond {self.t.name}'s largest N{self.t.max_line_number}")
+            text = f"N{self.n} {text}"
+        if self.t.dialect.block_end and words:
+            text += self.t.dialect.block_end
+        self._check_length(text, words)
+        return text + "\n"
 
-    def comment(self, text: str) -> str:
-        if "paren" in self.dialect.comments:
-            return "(" + text.replace("(", "[").replace(")", "]") + ")"
-        if "semi" in self.dialect.comments:
-            return "; " + text
-        return "// " + text
+    def _check_length(self, text: str, words: list[str]) -> None:
+        limit = self.t.max_line_length
+        if not limit:
+            return
+        size = len("".join(words)) if self.t.count_words_only else len(text)
+        if size > limit:
+            self.warn(dg.XL_LINE_LENGTH, f"a line of {size} characters; {self.t.name} reads at most {limit}",
+                      once=False)
 
-    # -- program
-    def preamble(self) -> Iterator[str]:
-        c = self.codes
-        yield self.block([c("plane_xy"), c("metric" if self.units is Units.MM else "inch"), c("absolute"),
-                          c("feed_per_min")])
+    def warn(self, code: str, message: str, once: bool = True) -> None:
+        """Report ``code`` at the current command (N08xx notes become errors under -Werror)."""
+        if self.sink is None or (once and code in self.warned):
+            return
+        self.warned.add(code)
+        severity = dg.Severity.ERROR if self.sink.werror and dg.CODES[code].severity is dg.Severity.NOTE else None
+        self.sink.emit(code, self.span, message, severity=severity)
 
+    def code(self, op: str, what: str = "") -> str:
+        name = self.t.code(op)
+        if not name and what:
+            self.warn(dg.XL_NO_CODE, f"{self.t.name} has no code for {what}")
+        return name
+
+    # ---- program -------------------------------------------------------------------------------
     def emit(self, cmds: Iterable[Command]) -> Iterator[str]:
-        yield from self.preamble()
+        if self.t.percent:
+            yield "%\n"
+        yield self.block([self.code("plane_xy"), self.code("inch" if self.units is Units.INCH else "metric"),
+                          self.code("absolute"), self.code("feed_per_min")])
         for cmd in cmds:
-            yield from self._frame_changes(cmd.frame)
+            self.span = cmd.span
             yield from self._command(cmd)
-
-    def _frame_changes(self, frame: Frame) -> Iterator[str]:
-        c = self.codes
-        if frame.units is not self.units:
-            self.units = frame.units
-            yield self.block([c("inch" if frame.units is Units.INCH else "metric")])
-        if frame.plane is not self.plane:
-            self.plane = frame.plane
-            yield self.block([c({Plane.XY: "plane_xy", Plane.ZX: "plane_zx", Plane.YZ: "plane_yz"}[frame.plane])])
-        prev = self.frame
-        self.frame = frame
-        if prev is None or prev.work_index != frame.work_index:
-            code = c.work.get(frame.work_index, "")
-            if code and (prev is not None or frame.work_index != 1):
-                yield self.block([code])
-        if prev is not None and prev.local_offset_mm != frame.local_offset_mm and c("local_offset"):
-            yield self.block([c("local_offset")] + [f"{a}{self.num(v, i)}" for i, (a, v)
-                                                     in enumerate(zip(AXES, frame.local_offset_mm, strict=True))
-                                                     if i < 3])
-        if prev is not None and prev.tool_length_mm != frame.tool_length_mm:
-            if frame.tool_length_mm == 0.0:
-                yield self.block([c("length_off")])
-            else:
-                yield self.block([c("length_plus"), f"H{frame.tool_length_index}"])
-
-    def _axes(self, start: Vec6, end: Vec6) -> list[str]:
-        """The axes that move (X alone for a move of zero length)."""
-        out = [f"{a}{self.num(end[i], i)}" for i, a in enumerate(AXES) if end[i] != start[i]]
-        return out or [f"X{self.num(end[0], 0)}"]
+        if self.t.percent:
+            yield "%\n"
 
     def _command(self, cmd: Command) -> Iterator[str]:
-        c = self.codes
         match cmd:
-            case Rapid():
-                yield self.block([c("rapid"), *self._axes(cmd.start, cmd.end)])
-            case Linear():
-                yield self.block([c("linear"), *self._axes(cmd.start, cmd.end), self._feed(cmd.feed_mm_min)])
-            case Arc():
-                yield self.block(self._arc(cmd))
+            case Rapid() | Linear() | Arc():
+                yield from self._sync(cmd.frame, cmd.start, cancel_cycle=True)
+                yield from self._motion(cmd)
+            case Cycle():
+                yield from self._cycle(cmd)
             case Dwell():
-                yield self.block([c("dwell"), f"P{round(cmd.seconds * 1000)}" if self._p_ms() else
-                                  f"P{_trim(f'{cmd.seconds:.3f}')}"])
-            case FeedRate() | SpindleSpeed() | SelectTool():
-                if isinstance(cmd, SpindleSpeed):
-                    yield self.block([f"S{_trim(f'{cmd.rpm:.3f}')}"])
-                elif isinstance(cmd, SelectTool):
-                    yield self.block([f"T{cmd.tool}"])
+                yield self.block([self.code("dwell", "a dwell"), self._dwell_word(cmd.seconds)])
+            case SpindleSpeed():
+                yield self.block([f"S{fixed(cmd.rpm, 3)}"])
+            case SelectTool():
+                yield self.block([f"T{cmd.tool}"])
             case Spindle():
-                op = {SpindleState.CW: "spindle_cw", SpindleState.CCW: "spindle_ccw", SpindleState.OFF: "spindle_off",
-                      SpindleState.ORIENT: "spindle_orient"}[cmd.state]
-                yield self.block([c(op)])
+                yield self.block([self.code(_SPINDLE_OPS[cmd.state], f"spindle {cmd.state.value}")])
             case Coolant():
-                op = {CoolantState.FLOOD: "coolant_flood", CoolantState.MIST: "coolant_mist",
-                      CoolantState.OFF: "coolant_off"}[cmd.state]
-                yield self.block([c(op)])
+                yield self.block([self.code(_COOLANT_OPS[cmd.state], f"{cmd.state.value} coolant")])
             case ToolChange():
-                yield self.block([c("tool_change")])
+                yield from self._tool_change(cmd)
             case Stop():
-                op = {StopKind.PROGRAM_STOP: "program_stop", StopKind.OPTIONAL_STOP: "optional_stop",
-                      StopKind.PROGRAM_END: "program_end", StopKind.END_REWIND: "program_end_rewind"}[cmd.kind]
-                yield self.block([c(op)])
-            case Comment() | Message():
+                if self.cycle_initial is not None and cmd.kind in (StopKind.PROGRAM_END, StopKind.END_REWIND):
+                    yield self.block([self.t.code("cycle_off")])
+                    self.cycle_initial = None
+                yield self.block([self.code(_STOP_OPS[cmd.kind], cmd.kind.name.lower().replace("_", " "))])
+            case Comment():
                 yield self.block([], cmd.text)
+            case Message():
+                stop = self.code("program_stop") if cmd.pause else ""
+                yield self.block([stop], cmd.text)
+            case Wait():
+                yield self.block([self.code("program_stop", "a wait")], f"wait: {cmd.what}")
+            case Aux():
+                yield from self._aux(cmd)
             case SetMode():
-                if cmd.name == "path_mode":
-                    yield self.block([c("exact_stop_mode" if cmd.value is PathMode.EXACT_STOP else "continuous_mode")])
-                elif cmd.name == "feed_mode":
-                    yield self.block([c("feed_per_rev" if cmd.value == "per_rev" else "feed_per_min")])
-                    self.feed = None
+                yield from self._set_mode(cmd)
             case _:
                 pass
 
-    def _p_ms(self) -> bool:
-        return self.dialect.decimal_rule == "liu"
+    def _tool_change(self, cmd: ToolChange) -> Iterator[str]:
+        code = self.t.code("tool_change")
+        if code:
+            yield self.block([code])
+            return
+        self.warn(dg.XL_NO_CODE, f"{self.t.name} has no tool change; a program stop asks the operator")
+        yield self.block([self.t.code("program_stop")], f"change to tool T{cmd.tool}")
 
-    def _feed(self, feed_mm_min: float) -> str:
-        if self.feed is not None and abs(self.feed - feed_mm_min) < 1e-9:
+    def _aux(self, cmd: Aux) -> Iterator[str]:
+        whole, frac = divmod(cmd.code, 10)
+        name = f"M{whole:02d}" + (f".{frac}" if frac else "")
+        if self.opt.same_dialect:
+            yield self.block([name, *(f"{k}{v:g}" for k, v in cmd.args)])
+        else:
+            self.warn(dg.XL_NO_CODE, f"{name} has no known meaning to carry over to {self.t.name}")
+            yield self.block([], f"{name} not translated")
+
+    def _set_mode(self, cmd: SetMode) -> Iterator[str]:
+        if cmd.name == "path_mode":
+            op = "exact_stop_mode" if cmd.value is PathMode.EXACT_STOP else "continuous_mode"
+            if self.t.has(op):
+                yield self.block([self.t.code(op)])
+
+    def _dwell_word(self, seconds: float) -> str:
+        """The dwell word in the target: a word of kind ``time`` in seconds, else ``time_ms``."""
+        cdef = self.t.by_op.get("dwell")
+        kinds = cdef.words if cdef is not None else {}
+        for letter in ("P", "X", "U"):
+            if kinds.get(letter) == "time":
+                return f"{letter}{fixed(seconds, 3)}"
+        for letter, kind in kinds.items():
+            if kind == "time_ms":
+                return f"{letter}{round(seconds * 1000)}"
+        return f"P{fixed(seconds, 3)}"
+
+    # ---- frames ------------------------------------------------------------------------------
+    def _sync(self, f: Frame, start: Vec6, cancel_cycle: bool) -> Iterator[str]:
+        """Bring the target's units, plane and offsets to ``f``; update the fold."""
+        lines: list[str] = []
+        if cancel_cycle and self.cycle_initial is not None:
+            lines.append(self.block([self.t.code("cycle_off")]))
+            self.cycle_initial = None
+        if self.forced is None and f.units is not self.units:
+            self.units = f.units
+            lines.append(self.block([self.code("inch" if f.units is Units.INCH else "metric", "units")]))
+            self.feed = None
+            self.qpos = None
+        if f.plane is not self.plane:
+            self.plane = f.plane
+            lines.append(self.block([self.code(_PLANE_OPS[f.plane], "the plane")]))
+        lines += self._offsets(f, start)
+        if lines and self.cycle_initial is not None:
+            lines.insert(0, self.block([self.t.code("cycle_off")]))
+            self.cycle_initial = None
+        fold = self.tf.fold(f, False)
+        if fold != self.fold:
+            self.fold = fold
+            self.qpos = None
+        if any(abs(v) > 1e-12 for v in fold):
+            self.warn(dg.XL_FOLDED, f"{self.t.name} output: an offset the target cannot set is added to the "
+                                    "coordinates")
+        yield from lines
+
+    def _offsets(self, f: Frame, start: Vec6) -> list[str]:
+        tf, out = self.tf, []
+        if tf.work_mm is None:  # the target's G54 is taken to be the source's
+            tf.work_mm = f.work_offset_mm if f.work_index == 1 else (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+            if f.work_index == 1:
+                tf.work_tables[1] = f.work_offset_mm
+        if f.work_index != tf.work_index and f.work_index in self.t.work:
+            out.append(self.block([self.t.work[f.work_index].name]))
+            tf.adopt_work(f)
+        if f.local_offset_mm != tf.local_mm and self.t.has("local_offset"):
+            out.append(self.block([self.t.code("local_offset"), *self._vector_words(f.local_offset_mm)]))
+            tf.local_mm = f.local_offset_mm
+        if (f.tool_length_mm, f.tool_length_index) != (tf.tool_mm, tf.tool_index):
+            out += self._tool_length(f)
+        if f.g92_offset_mm != tf.g92_mm and self.t.has("set_origin"):
+            machine = add(start, add(f.total_offset_mm, _tool(f)))
+            old = tf.g92_mm
+            tf.g92_mm = f.g92_offset_mm
+            here = sub(machine, tf.offset())
+            words = [f"{AXES[i]}{self.text(self.counts(here[i], i), i)}" for i in range(6)
+                     if abs(f.g92_offset_mm[i] - old[i]) > 1e-12]
+            out.append(self.block([self.t.code("set_origin"), *words]))
+        if out:
+            self.qpos = None
+        return out
+
+    def _tool_length(self, f: Frame) -> list[str]:
+        tf = self.tf
+        if f.tool_length_mm == 0.0 and self.t.has("length_off"):
+            tf.tool_mm, tf.tool_index = 0.0, 0
+            return [self.block([self.t.code("length_off")])]
+        op = "length_plus" if f.tool_length_mm > 0 else "length_minus"
+        if f.tool_length_index > 0 and self.t.has(op) and f.tool_length_axis == 2:
+            tf.tool_mm, tf.tool_index, tf.tool_axis = f.tool_length_mm, f.tool_length_index, f.tool_length_axis
+            return [self.block([self.t.code(op), f"H{f.tool_length_index}"])]
+        if self.t.has("length_dynamic") and f.tool_length_axis == 2:  # grbl G43.1 Z<length>
+            tf.tool_mm, tf.tool_index, tf.tool_axis = f.tool_length_mm, f.tool_length_index, 2
+            return [self.block([self.t.code("length_dynamic"), f"Z{self.length(f.tool_length_mm)}"])]
+        return []
+
+    def _vector_words(self, v: Vec6) -> list[str]:
+        return [f"{AXES[i]}{self.text(self.counts(v[i], i), i)}" for i in range(6) if i < 3 or v[i]]
+
+    # ---- motion ------------------------------------------------------------------------------
+    def _at(self, p: Vec6) -> list[int]:
+        fold = self.fold or (0.0,) * 6
+        return [self.counts(p[i] + fold[i], i) for i in range(6)]
+
+    def _axes(self, start: Vec6, end: Vec6, always: tuple[int, ...] = ()) -> list[str]:
+        """Words for the axes whose written value changes (the first plane axis for a null move)."""
+        if self.qpos is None:
+            self.qpos = self._at(start)
+        q = self._at(end)
+        words = [f"{AXES[i]}{self.text(q[i], i)}" for i in range(6) if q[i] != self.qpos[i] or i in always]
+        if not words:
+            i = self.plane.first
+            words = [f"{AXES[i]}{self.text(q[i], i)}"]
+        self.qpos = q
+        return words
+
+    def _feed_word(self, feed_mm_min: float) -> str:
+        if self.feed is not None and abs(self.feed - feed_mm_min) <= 1e-9 * max(1.0, feed_mm_min):
             return ""
         self.feed = feed_mm_min
-        return "F" + _trim(f"{feed_mm_min / self.units.mm_per_unit:.4f}")
+        return "F" + fixed(feed_mm_min / self.units.mm_per_unit, max(self.decimals, 3))
 
-    def _arc(self, a: Arc) -> list[str]:
-        c = self.codes
-        p = a.plane
-        letters = {Plane.XY: ("I", "J"), Plane.ZX: ("K", "I"), Plane.YZ: ("J", "K")}[p]
-        words = [c("arc_ccw" if a.turns > 0 else "arc_cw")]
-        full = a.start == a.end
-        words += self._axes(a.start, a.end) if not full else []
-        words.append(f"{letters[0]}{self.num(a.center[p.first] - a.start[p.first])}")
-        words.append(f"{letters[1]}{self.num(a.center[p.second] - a.start[p.second])}")
-        if abs(a.turns) > 1:
-            words.append(f"L{abs(a.turns)}")
-        words.append(self._feed(a.feed_mm_min))
+    def _motion(self, cmd: Rapid | Linear | Arc) -> Iterator[str]:
+        match cmd:
+            case Rapid():
+                yield self.block([self.t.code("rapid"), *self._axes(cmd.start, cmd.end)])
+            case Linear():
+                words = [self.t.code("linear"), *self._axes(cmd.start, cmd.end), self._feed_word(cmd.feed_mm_min)]
+                yield self.block(words)
+            case Arc():
+                yield from self._arc(cmd)
+
+    def _arc(self, a: Arc) -> Iterator[str]:
+        t = self.t
+        form = ArcForm(single_quadrant=t.single_quadrant, r_form=t.arc_form == "r", full_circle=t.full_circle,
+                       turns_word=bool(t.turns_word))
+        pieces = split(a.start, a.end, a.center, a.plane, a.turns, form)
+        if len(pieces) > 1:
+            self.warn(dg.XL_ARC_SPLIT, f"{t.name} output: an arc is written as {len(pieces)} pieces")
+        feed = a.feed_mm_min
+        if t.option("helix_feed", "projection") == "projection":
+            feed *= helix_feed_ratio(a.start, a.end, a.center, a.plane, a.turns)
+        code = t.code("arc_ccw" if a.turns > 0 else "arc_cw")
+        i, j = a.plane.first, a.plane.second
+        for piece in pieces:
+            if self.qpos is None:
+                self.qpos = self._at(piece.start)
+            start_q = self.qpos
+            center_q = self._at(a.center)
+            words = [code, *self._axes(piece.start, piece.end, always=(i, j))]  # full circles need them too
+            words += self._centre_words(a.plane, start_q, center_q, piece.sweep_rad, form)
+            if piece.turns_extra:
+                words.append(f"{t.turns_word}{piece.turns_extra + 1}")
+            words.append(self._feed_word(feed))
+            yield self.block(words)
+
+    def _centre_words(self, plane: Plane, start_q: list[int], center_q: list[int], sweep_rad: float,
+                      form: ArcForm) -> list[str]:
+        i, j = plane.first, plane.second
+        if form.r_form:
+            import math
+
+            r = math.hypot(center_q[i] - start_q[i], center_q[j] - start_q[j])
+            sign = -1 if sweep_rad > math.pi else 1
+            return [f"R{self.text(sign * round(r))}"]
+        d1, d2 = center_q[i] - start_q[i], center_q[j] - start_q[j]
+        if form.single_quadrant:
+            d1, d2 = abs(d1), abs(d2)
+        l1, l2 = _ARC_LETTERS[plane]
+        return [f"{l1}{self.text(d1)}", f"{l2}{self.text(d2)}"]
+
+    # ---- canned cycles -----------------------------------------------------------------------
+    def _cycle(self, c: Cycle) -> Iterator[str]:
+        problem = cy.keep_problem(c, self.t)
+        if not problem:
+            yield from self._sync(c.frame, c.start, cancel_cycle=False)
+            n = c.axis
+            fold = self.fold or (0.0,) * 6
+            initial = self.counts(c.initial_mm + fold[n], n)
+            if self.cycle_initial is not None and self.cycle_initial != initial:
+                yield self.block([self.t.code("cycle_off")])
+                self.cycle_initial = None
+            if self.qpos is None:
+                self.qpos = self._at(c.start)
+            if self.cycle_initial is None and self.qpos[n] != initial:
+                problem = "the tool is not at the cycle's initial level"
+        if problem:
+            if self.opt.expand_cycle is None:
+                self.warn(dg.XL_NO_CODE, f"canned cycle {c.code} cannot be written: {problem}")
+                return
+            for cmd in self.opt.expand_cycle(c):
+                yield from self._command(cmd)
+            return
+        yield from self._cycle_blocks(c, initial)
+
+    def _cycle_blocks(self, c: Cycle, initial: int) -> Iterator[str]:
+        t, n = self.t, c.axis
+        fold = self.fold or (0.0,) * 6
+        first, second = c.plane.first, c.plane.second
+        cdef = t.cycles[c.kind.value]
+        ret = t.code("return_initial" if c.return_initial else "return_r")
+        data = [cdef.name, f"{AXES[n]}{self.length(c.bottom_mm + fold[n])}", f"R{self.length(c.r_mm + fold[n])}",
+                *self._cycle_extra(c, cdef.words)]
+        same = self.cycle_initial is not None and data == self.cycle_data
+        for k, hole in enumerate(c.holes):
+            q = self._at(hole)
+            words = [f"{AXES[a]}{self.text(q[a], a)}" for a in range(6)
+                     if a != n and (a in (first, second) or q[a] != (self.qpos or q)[a])]
+            if k == 0 and same:  # the cycle in force has this data: the hole, and G98/G99 if it changed
+                words = [ret if ret != self.cycle_return else "", *words, self._feed_word(c.feed_mm_min)]
+            elif k == 0:
+                words = [ret, data[0], *words, *data[1:], self._feed_word(c.feed_mm_min)]
+            self.qpos = q
+            yield self.block(words)
+        self.cycle_initial, self.cycle_data, self.cycle_return = initial, data, ret
+        self.qpos = self._at(c.holes[-1])
+
+    def _cycle_extra(self, c: Cycle, kinds: dict[str, str]) -> list[str]:
+        words = []
+        q = cy.q_value_mm(c)
+        if q > 0:
+            words.append(f"Q{self.length(q)}")
+        if c.dwell_s > 0:
+            unit_ms = self.t.option("cycle_dwell_unit", "s") == "ms" or kinds.get("P") == "time_ms"
+            words.append(f"P{round(c.dwell_s * 1000)}." if unit_ms else f"P{fixed(c.dwell_s, 3)}")
+        pitch = cy.needs_pitch_word(c, self.t)
+        if pitch:
+            words.append(f"{pitch}{self.length(c.tap_pitch_mm)}")
         return words
 
 
-def _trim(s: str) -> str:
-    if "." in s:
-        s = s.rstrip("0")
-    if s in ("-0.", "-0"):
-        s = "0."
-    return s if "." in s else s + "."
+def _tool(f: Frame) -> Vec6:
+    v = [0.0] * 6
+    v[f.tool_length_axis] = f.tool_length_mm
+    return (v[0], v[1], v[2], v[3], v[4], v[5])
 
 
-def emit_gcode(cmds: Iterable[Command], dialect: Dialect, options: EmitOptions | None = None) -> Iterator[str]:
+def emit_gcode(cmds: Iterable[Command], dialect: Dialect, options: EmitOptions | None = None,
+               sink: DiagnosticSink | None = None) -> Iterator[str]:
     """Yield program lines (with newlines) for ``cmds`` in ``dialect``."""
-    return GcodeEmitter(dialect, options).emit(cmds)
+    return GcodeEmitter(dialect, options, sink).emit(cmds)

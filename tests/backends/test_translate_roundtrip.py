@@ -1,0 +1,73 @@
+"""Translation keeps the motion: for every corpus program and every target dialect,
+compile(source) and compile(translate(source, target), dialect=target) make the same
+moves in the same order with the same feeds and dwells (1 um, 0.01 % of feed).
+
+The corpus is ``tests/translate/corpus/<dialect>/*.nc`` plus ``examples/*.nc`` (SYNTEC).
+Targets are every file in ``cncc/dialects``: a new dialect is tested when it lands.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from cncc.api import compile_commands, compile_text
+from cncc.dialects import available
+from tests.translate.motion import difference, motion
+
+ROOT = Path(__file__).resolve().parents[2]
+DATA = ROOT / "tests" / "translate"
+TABLES = {"tools_file": str(DATA / "tools.toml"), "offsets_file": str(DATA / "offsets.toml")}
+
+
+def corpus() -> list[tuple[str, Path]]:
+    out = [(d.name, p) for d in sorted((DATA / "corpus").iterdir()) if d.is_dir() for p in sorted(d.glob("*.nc"))]
+    out += [("syntec", p) for p in sorted((ROOT / "examples").glob("*.nc"))]
+    return out
+
+
+PROGRAMS = corpus()
+TARGETS = available()
+
+
+def translate(text: str, source: str, target: str, **opts: object) -> str:
+    r = compile_text(text, dialect=source, emit="gcode", target=target, **TABLES, **opts)  # type: ignore[arg-type]
+    errors = [(d.code, d.message) for d in r.sink if d.severity.name == "ERROR"]
+    assert not errors, errors
+    return r.output
+
+
+def source_motion(text: str, dialect: str) -> list[tuple[object, ...]]:
+    cmds, r = compile_commands(text, dialect=dialect, **TABLES)  # type: ignore[arg-type]
+    assert r.ok, [(d.code, d.message) for d in r.sink]
+    return motion(cmds)
+
+
+def check(text: str, source: str, target: str, tol_mm: float = 1e-3, **opts: object) -> str:
+    out = translate(text, source, target, **opts)
+    want = source_motion(text, source)
+    got = source_motion(out, target)
+    assert want, "the program has no motion to compare"
+    why = difference(want, got, tol_mm)
+    assert not why, f"{why}\n--- translation to {target}:\n{out}"
+    return out
+
+
+def test_corpus_is_not_empty() -> None:
+    assert len(PROGRAMS) >= 10 and {"syntec", "szgh"} <= set(TARGETS)
+
+
+@pytest.mark.parametrize("target", TARGETS)
+@pytest.mark.parametrize(("source", "path"), PROGRAMS, ids=[f"{s}/{p.stem}" for s, p in PROGRAMS])
+def test_translation_keeps_motion(source: str, path: Path, target: str) -> None:
+    text = path.read_text()
+    inch = "G70" in text or "G20" in text
+    # 4 decimals in inch resolve 2.54 um: the written value is within half of it
+    check(text, source, target, tol_mm=1.3e-3 if inch else 1e-3)
+
+
+@pytest.mark.parametrize("target", TARGETS)
+def test_inch_program_within_one_micron_with_five_decimals(target: str) -> None:
+    text = (DATA / "corpus" / "syntec" / "inch.nc").read_text()
+    check(text, "syntec", target, decimals_inch=5)

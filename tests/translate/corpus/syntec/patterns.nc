@@ -1,0 +1,9 @@
+(hole patterns after a K0 block)
+G90 G17 G71 G94
+G00 X-80. Y0. Z20.
+G90 G81 Z-20. R2. F1000. K0
+G134 X0 Y0 I75. J30. K6
+G137.1 X60. Y-60. I20. J-20. P3 K3
+G80
+G00 Z50.
+M02

@@ -1,0 +1,29 @@
+(work systems, G52, G92, rotation, scaling, mirror and polar coordinates)
+G90 G17 G71 G94 G54
+G00 X0. Y0. Z10.
+G55
+G00 X10. Y10.
+G01 Z-1. F200.
+G52 X5. Y5.
+G01 X20. Y0.
+G52 X0. Y0.
+G68 X0. Y0. R30.
+G01 X20. Y0.
+G03 X0. Y20. I-20. J0.
+G69
+G51 X0. Y0. P2.
+G01 X10. Y5.
+G50
+G51.1 X0.
+G01 X15. Y5.
+G02 X5. Y15. I-10. J0.
+G50.1 X0.
+G16
+G01 X30. Y45.
+G15
+G00 Z10.
+G54
+G92 X0. Y0. Z0.
+G00 X5. Y5.
+G01 Z-2. F100.
+M30
