@@ -104,9 +104,11 @@ class Frame:
     rotation: Rotation | None = None
     tool_length_mm: float = 0.0  # signed, added to Z (G43 +, G44 -)
     tool_length_index: int = 0  # H number (0: none)
+    tool_length_axis: int = 2  # axis the length offset acts on (2 = Z; SZGH type B: the plane normal)
     comp_side: CompSide = CompSide.OFF
     comp_radius_mm: float = 0.0
     comp_index: int = 0  # D number
+    incremental: bool = False  # G91 when programmed: transforms rotate/scale the increment (see docs/frames.md)
 
     @property
     def total_offset_mm(self) -> Vec6:

@@ -19,6 +19,7 @@ from cncc import diagnostics as dg
 from cncc.ir import Arc, Command, Vec6
 from cncc.passes import Pass, PassContext, register
 
+
 @register
 @dataclass(frozen=True, kw_only=True)
 class ArcCheck(Pass):

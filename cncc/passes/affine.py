@@ -1,0 +1,159 @@
+"""Shared machinery of the transform passes (``scaling``, ``mirror``, ``rotation``).
+
+Consumes commands whose frames may carry the pass's transform record; produces the
+same commands with the transform applied to their positions (program coordinates
+of the same frame) and the record removed from the frame.
+
+A transform maps a programmed point ``p`` to ``c + L (p - c)`` (``L`` a 3x3 matrix on
+X Y Z; rotary axes are left alone).  Three rules keep the path what the controller
+would cut:
+
+* **continuity**: a move starts where the previous move actually ended, so the first
+  move after G51 starts at the unscaled point and the first one after G50 at the
+  scaled one (SYNTEC E000-33);
+* **increments**: in G91 (``frame.incremental``) the increment is mapped,
+  ``end' = start' + L (end - start)``, so a rotation turns it about the actual start
+  (SZGH E002-19); in G90 the programmed point itself is mapped;
+* **bypass**: G53 moves and the second leg of G28/G30 (origin ``"... ref"``) are in
+  machine terms and are not transformed.
+
+An arc's direction flips when ``L`` reverses orientation in the arc's plane; so does
+the cutter-compensation side in the frame's plane.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Iterator
+from dataclasses import dataclass, replace
+from typing import ClassVar
+
+from cncc import diagnostics as dg
+from cncc.ir import Arc, Command, CompSide, Frame, Linear, Plane, Rapid, Vec6
+from cncc.passes import Pass, PassContext
+
+Mat3 = tuple[tuple[float, float, float], tuple[float, float, float], tuple[float, float, float]]
+IDENTITY3: Mat3 = ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0))
+
+
+@dataclass(frozen=True, slots=True)
+class Affine:
+    """``p -> center + linear (p - center)`` on X Y Z."""
+
+    center: tuple[float, float, float]
+    linear: Mat3
+
+    def vector(self, d: tuple[float, float, float]) -> tuple[float, float, float]:
+        m = self.linear
+        return (m[0][0] * d[0] + m[0][1] * d[1] + m[0][2] * d[2],
+                m[1][0] * d[0] + m[1][1] * d[1] + m[1][2] * d[2],
+                m[2][0] * d[0] + m[2][1] * d[1] + m[2][2] * d[2])
+
+    def point(self, p: Vec6) -> Vec6:
+        c = self.center
+        x, y, z = self.vector((p[0] - c[0], p[1] - c[1], p[2] - c[2]))
+        return (c[0] + x, c[1] + y, c[2] + z, p[3], p[4], p[5])
+
+    def moved(self, start_out: Vec6, start_in: Vec6, p: Vec6) -> Vec6:
+        """``start_out + L (p - start_in)``: an increment mapped from the actual start."""
+        x, y, z = self.vector((p[0] - start_in[0], p[1] - start_in[1], p[2] - start_in[2]))
+        return (start_out[0] + x, start_out[1] + y, start_out[2] + z,
+                start_out[3] + p[3] - start_in[3], start_out[4] + p[4] - start_in[4],
+                start_out[5] + p[5] - start_in[5])
+
+    def det2(self, plane: Plane) -> float:
+        """Determinant of ``L`` restricted to ``plane`` (negative: orientation reversed)."""
+        i, j = plane.first, plane.second
+        m = self.linear
+        return m[i][i] * m[j][j] - m[i][j] * m[j][i]
+
+    def keeps_plane(self, plane: Plane) -> bool:
+        """True when ``L`` maps the plane to itself as a similarity (circles stay circles)."""
+        i, j, n = plane.first, plane.second, plane.normal
+        m = self.linear
+        if abs(m[i][n]) > 1e-12 or abs(m[j][n]) > 1e-12 or abs(m[n][i]) > 1e-12 or abs(m[n][j]) > 1e-12:
+            return False
+        a, b, c, d = m[i][i], m[i][j], m[j][i], m[j][j]
+        return abs(a * a + c * c - b * b - d * d) < 1e-9 and abs(a * b + c * d) < 1e-9
+
+
+def flip_side(side: CompSide) -> CompSide:
+    if side is CompSide.LEFT:
+        return CompSide.RIGHT
+    if side is CompSide.RIGHT:
+        return CompSide.LEFT
+    return side
+
+
+def _base(p: Vec6, frame: Frame) -> Vec6:
+    o = frame.total_offset_mm
+    return (p[0] + o[0], p[1] + o[1], p[2] + o[2], p[3] + o[3], p[4] + o[4], p[5] + o[5])
+
+
+def _local(b: Vec6, frame: Frame) -> Vec6:
+    o = frame.total_offset_mm
+    return (b[0] - o[0], b[1] - o[1], b[2] - o[2], b[3] - o[3], b[4] - o[4], b[5] - o[5])
+
+
+@dataclass(frozen=True, kw_only=True)
+class AffinePass(Pass):
+    """Base of the transform passes; subclasses say which record they apply."""
+
+    name: ClassVar[str] = ""
+
+    def affine(self, frame: Frame) -> Affine | None:
+        """The transform the frame asks this pass to apply (None: none)."""
+        raise NotImplementedError
+
+    def strip(self, frame: Frame, affine: Affine | None) -> Frame:
+        """The frame once this pass has applied its transform."""
+        raise NotImplementedError
+
+    def run(self, cmds: Iterable[Command], ctx: PassContext) -> Iterator[Command]:
+        last: Vec6 | None = None  # actual end of the previous motion, program + offsets
+        cache: dict[int, tuple[Frame, Affine | None, Frame]] = {}
+        for c in cmds:
+            frame = c.frame
+            entry = cache.get(id(frame))
+            if entry is None or entry[0] is not frame:
+                aff = self.affine(frame)
+                entry = cache[id(frame)] = (frame, aff, self.strip(frame, aff))
+            _, aff, nf = entry
+            if isinstance(c, Rapid | Linear | Arc):
+                out = self._motion(c, aff, nf, last, ctx)
+                last = _base(out.end, nf)
+                yield out
+            else:
+                yield c if nf is frame else replace(c, frame=nf)
+
+    def _motion(self, c: Rapid | Linear | Arc, aff: Affine | None, nf: Frame, last: Vec6 | None,
+                ctx: PassContext) -> Rapid | Linear | Arc:
+        start = c.start if last is None else _local(last, nf)
+        bypass = aff is None or c.origin == "G53" or c.origin.endswith(" ref")
+        if bypass or aff is None:
+            if start == c.start and nf is c.frame:
+                return c
+            end, center, turns = c.end, (c.center if isinstance(c, Arc) else c.end), 0
+        elif c.frame.incremental:
+            end = aff.moved(start, c.start, c.end)
+            center = aff.moved(start, c.start, c.center) if isinstance(c, Arc) else end
+            turns = 0
+        else:
+            end = aff.point(c.end)
+            center = aff.point(c.center) if isinstance(c, Arc) else end
+            turns = 0
+        if isinstance(c, Rapid):
+            return Rapid(c.span, nf, start, end, c.motion, c.origin)
+        if isinstance(c, Linear):
+            return Linear(c.span, nf, start, end, c.feed_mm_min, c.motion, c.origin)
+        turns = c.turns
+        if not bypass and aff is not None:
+            if not aff.keeps_plane(c.plane):
+                ctx.sink.emit(dg.SCALED_ARC_ELLIPSE, c.span,
+                              f"{self.name}: this arc would not stay a circle in its plane; it is kept as a circle "
+                              "through the mapped end points")
+            if aff.det2(c.plane) < 0:
+                turns = -turns
+        return Arc(c.span, nf, start, end, center, turns, c.plane, c.feed_mm_min, c.motion, c.origin)
+
+
+__all__ = ["IDENTITY3", "Affine", "AffinePass", "Mat3", "flip_side"]

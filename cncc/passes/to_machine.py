@@ -1,0 +1,52 @@
+"""``to-machine``: lower work, local and G92 offsets to machine coordinates.
+
+Consumes commands in the program coordinates of their frames; produces the same
+commands in machine coordinates, each pointing to a frame without offsets.  The
+tool length and compensation fields are left for ``tool-length`` and
+``cutter-comp``; after all three every frame is the identity (``Frame.is_identity``).
+The planner, timing and pulse backends read this; the canon trace does not (it
+reports offsets as calls of their own).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Iterator
+from dataclasses import dataclass, replace
+from typing import ClassVar
+
+from cncc.ir import ZERO6, Arc, Command, Frame, Linear, Rapid, Vec6
+from cncc.passes import Pass, PassContext, register
+
+
+def _add(p: Vec6, o: Vec6) -> Vec6:
+    return (p[0] + o[0], p[1] + o[1], p[2] + o[2], p[3] + o[3], p[4] + o[4], p[5] + o[5])
+
+
+@register
+@dataclass(frozen=True, kw_only=True)
+class ToMachine(Pass):
+    """Offsets to machine coordinates."""
+
+    name: ClassVar[str] = "to-machine"
+
+    def run(self, cmds: Iterable[Command], ctx: PassContext) -> Iterator[Command]:
+        cache: dict[int, tuple[Frame, Frame]] = {}
+        for c in cmds:
+            f = c.frame
+            entry = cache.get(id(f))
+            if entry is None or entry[0] is not f:
+                plain = f.total_offset_mm == ZERO6 and not f.machine_coords and f.work_offset_mm == ZERO6
+                nf = f if plain else replace(f, work_offset_mm=ZERO6, local_offset_mm=ZERO6, g92_offset_mm=ZERO6,
+                                             machine_coords=False)
+                entry = cache[id(f)] = (f, nf)
+            nf = entry[1]
+            o = f.total_offset_mm
+            if nf is f or not isinstance(c, Rapid | Linear | Arc):
+                yield c if nf is f else replace(c, frame=nf)
+            elif isinstance(c, Rapid):
+                yield Rapid(c.span, nf, _add(c.start, o), _add(c.end, o), c.motion, c.origin)
+            elif isinstance(c, Linear):
+                yield Linear(c.span, nf, _add(c.start, o), _add(c.end, o), c.feed_mm_min, c.motion, c.origin)
+            else:
+                yield Arc(c.span, nf, _add(c.start, o), _add(c.end, o), _add(c.center, o), c.turns, c.plane,
+                          c.feed_mm_min, c.motion, c.origin)
