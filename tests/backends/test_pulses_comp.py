@@ -12,12 +12,13 @@ from hypothesis import strategies as st
 from cncc.backends.pulses import generate_pulses
 from cncc.backends.pulses.spec import axis_spec, backlash_offsets_s
 from cncc.ir.machine import Axis, BacklashMode, MachineModel, StepOutput
+from cncc.ir.trajectory import Trajectory
 from cncc.source import Span
 from tests.backends.pulse_trajectories import NAN, build, constant_velocity, trapezoid
 from tests.backends.test_pulses_exact import assert_positions_at_phase_ends, collect, machine, run
 
 
-def out_and_back(v: float = 20.0, t: float = 0.05) -> object:
+def out_and_back(v: float = 20.0, t: float = 0.05) -> Trajectory:
     return build([(t, [v], [0.0], [0.0]), (t, [-v], [0.0], [0.0]), (t, [v], [0.0], [0.0])], [0.0], ("X",))
 
 
@@ -96,7 +97,7 @@ def test_interp_mode_counts_per_period_and_spreads_evenly() -> None:
     period_ns = 2_000_000
     k = s["t_ns"] // period_ns
     spec = chunks[0].layout.specs[0]
-    t_grid = np.arange(0, math.ceil(traj.duration_total_s / 0.002) + 1) * 0.002
+    t_grid = np.arange(0, math.ceil(traj.duration_total_s / 0.002) + 1, dtype=np.float64) * 0.002
     from cncc.backends.pulses.interp import sample_positions
 
     n = spec.motor_steps(sample_positions(traj, t_grid)[:, 0])

@@ -8,9 +8,11 @@ in interp mode) every axis' raw steps (:mod:`.solve` or :mod:`.interp`) go throu
 2. **reversal delay** (SZGH Axis P68): a pause of ``reversal_delay_s`` is inserted
    into the time line at ``t_r`` (coinciding reversals pause once, the longest);
    every later event of every axis moves by it;
-3. **backlash**: ``backlash_steps`` pulses in the new direction, starting at ``t_r``
-   (mode A at a constant rate, mode B ramped), merged into the axis' stream; pulses
-   past the window's end carry into the next;
+3. **backlash** (:mod:`.backlash`): ``backlash_steps`` pulses in the new direction,
+   starting at ``t_r`` (mode A at a constant rate, mode B ramped), superposed on the
+   commanded steps in exact mode (a burst still running at a window's end holds the
+   axis' later events back to the next window), added to the period counts in
+   interpolation mode;
 4. rounding to integer nanoseconds; a step after a direction change is delayed, if
    needed, to ``previous step + pulse_width_ns + dir_setup_ns`` (W0705), and the
    direction line changes ``dir_setup_ns`` before it;
@@ -20,16 +22,17 @@ in interp mode) every axis' raw steps (:mod:`.solve` or :mod:`.interp`) go throu
 from __future__ import annotations
 
 from collections.abc import Iterator, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Literal
 
 import numpy as np
 
 from cncc import diagnostics as diag
+from cncc.backends.pulses.backlash import B, BurstMerger, PeriodBacklash, Train, add_period_counts
 from cncc.backends.pulses.chunk import AxisSteps, PulseLayout, StepChunk
 from cncc.backends.pulses.interp import SZGH_PERIOD_S, interp_window, period_count
 from cncc.backends.pulses.limits import Reporter, check_soft_limits, check_spacing
-from cncc.backends.pulses.solve import F64, I64, RawSteps, exact_axis_steps, segment, speed_max, windows
+from cncc.backends.pulses.solve import F64, I8, I32, I64, RawSteps, exact_axis_steps, segment, speed_max, windows
 from cncc.backends.pulses.spec import AxisPulseSpec, axis_spec, backlash_offsets_s
 from cncc.diagnostics import DiagnosticSink
 from cncc.ir.machine import Axis, MachineModel
@@ -46,9 +49,6 @@ class _AxisState:
     last_t_ns: int | None = None
     last_dir: int = 1  # direction of the last pulse (the line's initial level means +1)
     last_motion: int = 1  # direction of the last commanded motion (homing was positive)
-    pend_t: I64 = field(default_factory=lambda: np.zeros(0, np.int64))
-    pend_dir: np.ndarray = field(default_factory=lambda: np.zeros(0, np.int8))  # type: ignore[type-arg]
-    pend_phase: np.ndarray = field(default_factory=lambda: np.zeros(0, np.int32))  # type: ignore[type-arg]
 
 
 def build_specs(traj: Trajectory, machine: MachineModel,
@@ -90,7 +90,7 @@ def generate_pulses(traj: Trajectory, machine: MachineModel, *, mode: str = "exa
     layout = PulseLayout(specs, mode)
     rep = Reporter(traj, spans, sink)
     check_soft_limits(traj, specs, cols, rep)
-    post = _Post(layout, rep)
+    post = _Post(layout, rep, period_s)
     budget = max(int(chunk_steps), 16)
     if traj.phase_count == 0:
         yield post.finish([RawSteps.empty() for _ in specs], 0.0, True)
@@ -147,37 +147,59 @@ class _Warp:
             return t_s + self.offset_s
         return t_s + self.offset_s + self.ev_cum_s[np.searchsorted(self.ev_t_s, t_s, side=side)]
 
+    def to_ns(self, t_s: F64) -> I64:
+        if self.ev_t_s.size == 0:
+            t = t_s * 1e9
+            t += self.offset_s * 1e9
+        else:
+            t = self(t_s) * 1e9
+        return np.rint(t, out=t).astype(np.int64)
+
+
+Flips = tuple[F64, I8, I32]  # reversal instants (s), new directions, phases
+
 
 class _Post:
     """Steps 1-5 of the module docstring, with the state carried between windows."""
 
-    def __init__(self, layout: PulseLayout, rep: Reporter) -> None:
+    def __init__(self, layout: PulseLayout, rep: Reporter, period_s: float) -> None:
         self.layout = layout
         self.rep = rep
+        self.period_s = period_s
         self.state = [_AxisState() for _ in layout.specs]
-        self.burst = [backlash_offsets_s(s) for s in layout.specs]
+        bursts = [backlash_offsets_s(s) for s in layout.specs]
+        self.merger = [BurstMerger(off, length) for off, length in bursts]
+        self.per_period = [PeriodBacklash.of(off, period_s) for off, _ in bursts]
         self.offset_s = 0.0
         self.index = 0
         self.t_start_ns = 0
+        self.total_pause_s = 0.0
 
     def finish(self, raws: list[RawSteps], t_end_s: float, final: bool) -> StepChunk:
         specs = self.layout.specs
         flips = [self._flips(raw, st) for raw, st in zip(raws, self.state, strict=True)]
+        flags: list[B | None] = [None] * len(specs)
+        if self.layout.mode == "interp":
+            for i, raw in enumerate(raws):
+                raws[i], flags[i] = self._period_backlash(i, raw, flips[i], t_end_s, final)
         ev_t, ev_cum = self._pauses(flips)
         warp = _Warp(self.offset_s, ev_t, ev_cum)
         end_ns = int(np.rint(warp(np.array([t_end_s]))[0] * 1e9))
-        axes = []
-        for i, spec in enumerate(specs):
-            axes.append(self._axis(i, spec, raws[i], flips[i], warp, end_ns, final))
-        self.offset_s += float(ev_cum[-1]) if ev_cum.size else 0.0
+        axes = [self._axis(i, spec, raws[i], flips[i], flags[i], warp, end_ns, final) for i, spec in enumerate(specs)]
+        pause = float(ev_cum[-1]) if ev_cum.size else 0.0
+        self.offset_s += pause
+        self.total_pause_s += pause
         horizon = FAR_FUTURE_NS if final else end_ns - self.layout.max_dir_setup_ns - 1
+        holds = [m.hold_ns for m in self.merger if m.hold_ns is not None]
+        if holds:
+            horizon = min(horizon, min(holds) - self.layout.max_dir_setup_ns - 1)
         chunk = StepChunk(self.layout, self.index, self.t_start_ns, end_ns, horizon, tuple(axes))
         self.index += 1
         self.t_start_ns = end_ns
         return chunk
 
     @staticmethod
-    def _flips(raw: RawSteps, st: _AxisState) -> tuple[F64, np.ndarray, np.ndarray]:  # type: ignore[type-arg]
+    def _flips(raw: RawSteps, st: _AxisState) -> Flips:
         if raw.run_dir.size == 0:
             return np.zeros(0), np.zeros(0, np.int8), np.zeros(0, np.int32)
         prev = np.empty_like(raw.run_dir)
@@ -187,7 +209,7 @@ class _Post:
         st.last_motion = int(raw.run_dir[-1])
         return raw.run_t_s[sel], raw.run_dir[sel], raw.run_phase[sel]
 
-    def _pauses(self, flips: list[tuple[F64, np.ndarray, np.ndarray]]) -> tuple[F64, F64]:  # type: ignore[type-arg]
+    def _pauses(self, flips: list[Flips]) -> tuple[F64, F64]:
         """Pause instants (sorted, distinct) and cumulative pause before each position."""
         ts: list[F64] = []
         ds: list[F64] = []
@@ -206,53 +228,65 @@ class _Post:
         d_u = np.maximum.reduceat(d_all, starts)
         return t_u, np.concatenate([[0.0], np.cumsum(d_u)])
 
-    def _axis(self, i: int, spec: AxisPulseSpec, raw: RawSteps, flip: tuple[F64, np.ndarray, np.ndarray],  # type: ignore[type-arg]
-              warp: _Warp, end_ns: int, final: bool) -> AxisSteps:
-        st = self.state[i]
-        t_ns = np.rint(warp(raw.t_s) * 1e9).astype(np.int64)
-        direction, phase = raw.direction, raw.phase
-        backlash = np.zeros(t_ns.shape, dtype=np.bool_)
-        burst, burst_len_s = self.burst[i]
-        if (burst.size and flip[0].size) or st.pend_t.size:
-            parts_t, parts_d, parts_p, parts_b = [t_ns, st.pend_t], [direction, st.pend_dir], [phase, st.pend_phase], \
-                [backlash, np.ones(st.pend_t.shape, np.bool_)]
-            starts = np.zeros(0)
-            if burst.size and flip[0].size:
-                starts = warp(flip[0], "left")
-                bt = np.rint((starts[:, None] + burst[None, :]) * 1e9).astype(np.int64).ravel()
-                parts_t.append(bt)
-                parts_d.append(np.repeat(flip[1], burst.size))
-                parts_p.append(np.repeat(flip[2], burst.size))
-                parts_b.append(np.ones(bt.shape, np.bool_))
-            t_ns, direction = np.concatenate(parts_t), np.concatenate(parts_d)
-            phase, backlash = np.concatenate(parts_p), np.concatenate(parts_b)
-            order = np.argsort(t_ns, kind="stable")
-            t_ns, direction, phase, backlash = t_ns[order], direction[order], phase[order], backlash[order]
-            for t0 in starts.tolist():
-                superpose(t_ns, direction, backlash, round(t0 * 1e9), round((t0 + burst_len_s) * 1e9))
-            carry = backlash & (t_ns >= end_ns) if not final else np.zeros(t_ns.shape, np.bool_)
-            st.pend_t, st.pend_dir, st.pend_phase = t_ns[carry], direction[carry], phase[carry]
-            if carry.any():
-                keep = ~carry
-                t_ns, direction, phase, backlash = t_ns[keep], direction[keep], phase[keep], backlash[keep]
-        if t_ns.size == 0:
-            return AxisSteps.empty()
-        dir_idx = self._enforce(i, spec, t_ns, direction, phase)
-        level = ((direction[dir_idx] > 0) ^ spec.direction_invert).astype(np.uint8)
-        dir_t = t_ns[dir_idx] - spec.dir_setup_ns
-        check_spacing(spec, t_ns, phase, st.last_t_ns, self.rep)
-        st.last_t_ns = int(t_ns[-1])
-        st.last_dir = int(direction[-1])
-        return AxisSteps(t_ns, direction, phase, backlash, dir_t, level)
+    def _period_backlash(self, i: int, raw: RawSteps, flip: Flips, t_end_s: float,
+                         final: bool) -> tuple[RawSteps, B | None]:
+        """Interpolation mode: the compensation added to the period counts (see :mod:`.backlash`)."""
+        pb = self.per_period[i]
+        if pb.per_period.size and flip[0].size:
+            pb.add(np.rint(flip[0] / self.period_s).astype(np.int64), flip[1], flip[2])
+        if not pb.pending:
+            return raw, None
+        k1 = None if final else round(t_end_s / self.period_s)
+        bl_k, bl_c, bl_ph = pb.take(k1)
+        periods = np.rint(raw.run_t_s / self.period_s).astype(np.int64)
+        counts: I64 = np.diff(np.append(raw.run_first, raw.t_s.shape[0])) * raw.run_dir.astype(np.int64)
+        t_s, d, ph, bl, keys, run_dir, run_ph, first = add_period_counts(
+            periods, counts, raw.run_phase, bl_k, bl_c, bl_ph, self.period_s)
+        run_t_s: F64 = keys.astype(np.float64) * self.period_s
+        return RawSteps(t_s, d, ph, run_t_s, run_dir, run_ph, first), bl
 
-    def _enforce(self, i: int, spec: AxisPulseSpec, t_ns: I64, direction: np.ndarray,  # type: ignore[type-arg]
-                 phase: np.ndarray) -> I64:  # type: ignore[type-arg]
-        """Delay steps after direction changes, keep times strictly increasing; change indices."""
+    def _axis(self, i: int, spec: AxisPulseSpec, raw: RawSteps, flip: Flips, flags: B | None, warp: _Warp,
+              end_ns: int, final: bool) -> AxisSteps:
         st = self.state[i]
-        prev = np.empty_like(direction)
+        merger = self.merger[i]
+        t_ns = warp.to_ns(raw.t_s)
+        backlash = flags if flags is not None else np.zeros(t_ns.shape, np.bool_)
+        train = Train(t_ns, raw.direction, raw.phase, backlash)
+        dir_idx: I64 | None = None
+        if self.layout.mode == "exact" and (not merger.idle or (merger.offsets_s.size and flip[0].size)):
+            train = merger.merge(train, warp(flip[0], "left"), flip[1], flip[2], end_ns, final)
+        else:
+            dir_idx = self._run_changes(raw, st)
+        if train.t_ns.size == 0:
+            return AxisSteps.empty()
+        dir_idx, dt = self._enforce(i, spec, train, dir_idx)
+        level = ((train.direction[dir_idx] > 0) ^ spec.direction_invert).astype(np.uint8)
+        dir_t = train.t_ns[dir_idx] - spec.dir_setup_ns
+        check_spacing(spec, train.t_ns, dt, train.phase, st.last_t_ns, self.rep)
+        st.last_t_ns = int(train.t_ns[-1])
+        st.last_dir = int(train.direction[-1])
+        return AxisSteps(train.t_ns, train.direction, train.phase, train.backlash, dir_t, level)
+
+    @staticmethod
+    def _run_changes(raw: RawSteps, st: _AxisState) -> I64:
+        """Indices of the steps where the direction changes, from the runs (all steps of a run share it)."""
+        if raw.run_dir.size == 0:
+            return np.zeros(0, np.int64)
+        prev = np.empty_like(raw.run_dir)
         prev[0] = st.last_dir
-        prev[1:] = direction[:-1]
-        idx = np.flatnonzero(direction != prev)
+        prev[1:] = raw.run_dir[:-1]
+        changes: I64 = raw.run_first[raw.run_dir != prev]
+        return changes
+
+    def _enforce(self, i: int, spec: AxisPulseSpec, train: Train, idx: I64 | None) -> tuple[I64, I64]:
+        """Delay steps after direction changes, keep times strictly increasing; (change indices, diff)."""
+        st = self.state[i]
+        t_ns, direction = train.t_ns, train.direction
+        if idx is None:
+            prev = np.empty_like(direction)
+            prev[0] = st.last_dir
+            prev[1:] = direction[:-1]
+            idx = np.flatnonzero(direction != prev)
         gap = spec.pulse_width_ns + spec.dir_setup_ns
         for k in idx.tolist():
             if k > 0:
@@ -260,46 +294,16 @@ class _Post:
             else:  # at the very start, a virtual step at -pulse_width: DIR may change at t = 0
                 before = st.last_t_ns if st.last_t_ns is not None else -spec.pulse_width_ns
             if t_ns[k] < before + gap:
-                self.rep.emit(diag.DIR_SETUP_DELAY, spec.name, int(phase[k]),
+                self.rep.emit(diag.DIR_SETUP_DELAY, spec.name, int(train.phase[k]),
                               f"step delayed by {before + gap - int(t_ns[k])} ns for the direction set-up time")
                 t_ns[k] = before + gap
-        base = np.arange(t_ns.shape[0], dtype=np.int64)
-        u = t_ns - base
-        if st.last_t_ns is not None:
-            u[0] = max(int(u[0]), st.last_t_ns + 1)
-        t_ns[:] = np.maximum.accumulate(u) + base
-        return idx
-
-
-def superpose(t_ns: I64, direction: np.ndarray, backlash: np.ndarray, t0_ns: int, t1_ns: int) -> None:  # type: ignore[type-arg]
-    """Re-time, in place, the backlash burst ``[t0_ns, t1_ns]`` and the commanded steps inside it.
-
-    The drive sees the sum of two motions, the commanded one and the compensation, so
-    its steps are where the *sum* of the two positions crosses the step boundaries,
-    not the union of two step trains (which could put two pulses a nanosecond apart).
-    Each train's position is taken as linear between its own crossings (step ``k`` at
-    ``k - 1/2``); the combined steps are the crossings of the sum.  Labels (phase,
-    backlash flag) stay with the steps in their merged order.
-    """
-    lo = int(np.searchsorted(t_ns, t0_ns, side="left"))
-    hi = int(np.searchsorted(t_ns, t1_ns, side="right"))
-    if hi - lo < 2:
-        return
-    seg_b = backlash[lo:hi]
-    if seg_b.all() or not seg_b.any() or np.ptp(direction[lo:hi]) != 0:
-        return  # nothing to combine, or a further reversal inside: keep the plain merge
-    t = t_ns[lo:hi].astype(np.float64)
-    knots_c = [float(t0_ns), *t[~seg_b].tolist()]
-    n_c = int((~seg_b).sum())
-    nxt = hi < t_ns.shape[0] and not backlash[hi] and direction[hi] == direction[lo]
-    if nxt:
-        knots_c.append(float(t_ns[hi]))
-    levels_c = np.concatenate([[0.0], np.arange(n_c) + 0.5, [n_c + 0.5] if nxt else []])
-    n_b = int(seg_b.sum())
-    knots_b = np.array([float(t0_ns), *t[seg_b].tolist(), float(max(t1_ns, int(t[-1])))])
-    levels_b = np.concatenate([[0.0], np.arange(n_b) + 0.5, [float(n_b)]])
-    grid = np.unique(np.concatenate([knots_c, knots_b]))
-    total = np.interp(grid, np.array(knots_c), levels_c) + np.interp(grid, knots_b, levels_b)
-    total = np.maximum.accumulate(total)
-    new = np.interp(np.arange(n_c + n_b) + 0.5, total, grid)
-    t_ns[lo:hi] = np.rint(new).astype(np.int64)
+        dt = np.diff(t_ns)
+        first_ok = st.last_t_ns is None or int(t_ns[0]) > st.last_t_ns
+        if not first_ok or (dt.size and int(dt.min()) <= 0):  # rare: equal ns after rounding
+            base = np.arange(t_ns.shape[0], dtype=np.int64)
+            u = t_ns - base
+            if st.last_t_ns is not None:
+                u[0] = max(int(u[0]), st.last_t_ns + 1)
+            t_ns[:] = np.maximum.accumulate(u) + base
+            dt = np.diff(t_ns)
+        return idx, dt

@@ -57,5 +57,6 @@ def interp_window(traj: Trajectory, specs: tuple[AxisPulseSpec, ...], k0: int, k
         spacing = period_s / counts
         t_s = t[mv][pidx] + (off + 0.5) * spacing[pidx]
         phase = mid_phase[mv]
-        out.append(RawSteps(t_s, direction[pidx], phase[pidx], t[mv], direction, phase))
+        out.append(RawSteps(t_s, direction[pidx], phase[pidx], t[mv], direction, phase,
+                            np.cumsum(counts) - counts))
     return out

@@ -100,18 +100,22 @@ def check_soft_limits(traj: Trajectory, specs: tuple[AxisPulseSpec, ...], cols: 
                                   "reaches {:.4f}, above the soft limit " + f"{spec.soft_max_mm:.4f}")
 
 
-def check_spacing(spec: AxisPulseSpec, t_ns: npt.NDArray[np.int64], phase: npt.NDArray[np.int32],
-                  last_t_ns: int | None, rep: Reporter) -> None:
-    """E0701 and E0702 on the final step times of one axis in one window."""
+def check_spacing(spec: AxisPulseSpec, t_ns: npt.NDArray[np.int64], dt_ns: npt.NDArray[np.int64],
+                  phase: npt.NDArray[np.int32], last_t_ns: int | None, rep: Reporter) -> None:
+    """E0701 and E0702 on the final step times of one axis in one window (``dt_ns = diff(t_ns)``)."""
     if t_ns.size == 0:
         return
+    rate_dt_ns = 1e9 / spec.max_step_rate_hz - 1.0 if spec.max_step_rate_hz > 0 else 0.0
+    least = max(rate_dt_ns, float(spec.min_spacing_ns))
+    first_ok = last_t_ns is None or int(t_ns[0]) - last_t_ns >= least
+    if first_ok and (dt_ns.size == 0 or int(dt_ns.min()) >= least):
+        return
     if last_t_ns is None:
-        dt = np.diff(t_ns)
+        dt = dt_ns
         ph = phase[1:]
     else:
-        dt = np.diff(t_ns, prepend=last_t_ns)
+        dt = np.concatenate([[int(t_ns[0]) - last_t_ns], dt_ns])
         ph = phase
-    rate_dt_ns = 1e9 / spec.max_step_rate_hz - 1.0 if spec.max_step_rate_hz > 0 else 0.0
     fast = np.flatnonzero(dt < rate_dt_ns)
     if fast.size:
         rates = 1e9 / np.maximum(dt[fast], 1).astype(np.float64)

@@ -24,6 +24,7 @@ from dataclasses import dataclass
 import numpy as np
 import numpy.typing as npt
 
+from cncc.backends.pulses.roots import piece_times
 from cncc.backends.pulses.spec import AxisPulseSpec
 from cncc.ir.trajectory import Trajectory
 
@@ -32,9 +33,7 @@ I64 = npt.NDArray[np.int64]
 I8 = npt.NDArray[np.int8]
 I32 = npt.NDArray[np.int32]
 
-NEWTON_TOL_S = 1e-12
-NEWTON_MAX_ITER = 80
-NEWTON_PLAIN_ITER = 2
+JERK_SEGMENT_STEPS = 64  # a jerk phase is cut into segments of about this many steps (all axes)
 
 
 @dataclass(frozen=True, slots=True)
@@ -42,9 +41,10 @@ class RawSteps:
     """Steps of one axis in one window, before time warping and ns rounding.
 
     ``t_s``, ``direction``, ``phase``: shape ``(c,)``, sorted by time.
-    ``run_t_s``, ``run_dir``, ``run_phase``: shape ``(r,)``, the start of each stretch
-    of motion that makes steps (a monotone piece, or an interpolation period), used to
-    find reversals.
+    ``run_t_s``, ``run_dir``, ``run_phase``, ``run_first``: shape ``(r,)``, the start of
+    each stretch of motion that makes steps (a monotone piece, or an interpolation
+    period) and the index of its first step, used to find reversals and direction
+    changes without looking at every step.
     """
 
     t_s: F64
@@ -53,12 +53,13 @@ class RawSteps:
     run_t_s: F64
     run_dir: I8
     run_phase: I32
+    run_first: I64
 
     @staticmethod
     def empty() -> RawSteps:
         z = np.zeros(0)
         return RawSteps(z, np.zeros(0, np.int8), np.zeros(0, np.int32), z.copy(),
-                        np.zeros(0, np.int8), np.zeros(0, np.int32))
+                        np.zeros(0, np.int8), np.zeros(0, np.int32), np.zeros(0, np.int64))
 
 
 @dataclass(frozen=True, slots=True)
@@ -110,7 +111,9 @@ def segment(traj: Trajectory, steps_per_mm: F64, budget: int) -> Segments:
     dur = traj.duration_s
     vmax = speed_max(traj.v0_mm_s, traj.a0_mm_s2, traj.j_mm_s3, dur[:, None])
     est = (vmax * dur[:, None] * steps_per_mm[None, :]).sum(axis=1) + 1.0
-    nsub = np.clip(np.ceil(est / budget), 1, 1 << 30).astype(np.int64)
+    jerky = np.any(traj.j_mm_s3 != 0, axis=1)
+    per_seg = np.where(jerky, float(min(budget, JERK_SEGMENT_STEPS)), float(budget))
+    nsub = np.clip(np.ceil(est / per_seg), 1, 1 << 30).astype(np.int64)
     phase = np.repeat(np.arange(n, dtype=np.int64), nsub)
     first = np.cumsum(nsub) - nsub
     sub = np.arange(phase.shape[0], dtype=np.int64) - first[phase]
@@ -176,132 +179,28 @@ def exact_axis_steps(traj: Trajectory, seg: Segments, lo: int, hi: int, i: int, 
     end_state = (y_all[mv + 1] - pa, v0[c] + tau_e * (a0[c] + tau_e * jk[c] / 2), a0[c] + tau_e * jk[c])
     t_abs = traj.t0_s[ph[c]] + tau_a
     phase = ph[c].astype(np.int32)
-    u = _solve(spec, counts, direction, na, pa, va, aa, jj, length, end_state)
+    dirf = direction.astype(np.float64)
+    d = _distances(spec, counts, direction, na, pa)
+    ends = (end_state[0] * dirf, end_state[1] * dirf, end_state[2] * dirf)
+    u = piece_times(d, counts, va * dirf, aa * dirf, jj * dirf, length, ends)
     u += np.repeat(t_abs, counts)
-    return RawSteps(u, np.repeat(direction, counts), np.repeat(phase, counts), t_abs, direction, phase)
+    return RawSteps(u, np.repeat(direction, counts), np.repeat(phase, counts), t_abs, direction, phase,
+                    np.cumsum(counts) - counts)
 
 
-def _solve(spec: AxisPulseSpec, counts: I64, direction: I8, na: I64, pa: F64, va: F64, aa: F64, jj: F64,
-           length: F64, end_state: tuple[F64, F64, F64]) -> F64:
-    """Local time ``u`` (from piece start) of every step of every piece, concatenated.
-
-    ``d`` is the distance from the piece start to the step's boundary; then
-    ``u = 2 d / (v + sign * sqrt(v^2 + 2 a d))`` (exact without jerk, no cancellation
-    because ``v`` has the motion's sign), polished by Newton where there is jerk.
-    """
+def _distances(spec: AxisPulseSpec, counts: I64, direction: I8, na: I64, pa: F64) -> F64:
+    """Distance (direction frame, mm) from each piece start to each of its step boundaries."""
     total = int(counts.sum())
     first = np.cumsum(counts) - counts
-    off = np.arange(1, total + 1, dtype=np.float64)
-    off -= np.repeat(first.astype(np.float64), counts)
     dirf = direction.astype(np.float64)
     if spec.pitch is None:
-        mm_per_step = spec.steps_den / spec.steps_num
-        d0 = (na - 0.5 * dirf) * mm_per_step - pa  # boundary of the first step, from the piece start
-        d = np.repeat(dirf * mm_per_step, counts)
-        d *= off
-        d += np.repeat(d0, counts)
-    else:
-        s_new = np.repeat(na, counts) + np.repeat(direction, counts) * off.astype(np.int64)
-        d = spec.boundary_mm(s_new, np.repeat(direction, counts)) - np.repeat(pa, counts)
-    vs = np.repeat(va, counts)
-    acc = np.repeat(aa, counts)
-    root = acc * d
-    root *= 2
-    root += vs * vs
-    np.maximum(root, 0.0, out=root)
-    np.sqrt(root, out=root)
-    root *= np.repeat(dirf, counts)
-    root += vs
-    with np.errstate(divide="ignore", invalid="ignore"):
-        u = np.divide(d, root, out=root)
-    u *= 2
-    lim = np.repeat(length, counts)
-    jerky = jj != 0
-    if jerky.any():
-        ends = tuple(np.repeat(x, counts) for x in end_state)
-        if jerky.all():
-            u = _polish(u, d, vs, acc, np.repeat(jj, counts), np.repeat(dirf, counts), lim, ends)
-        else:
-            sel = np.flatnonzero(np.repeat(jerky, counts))
-            u[sel] = _polish(u[sel], d[sel], vs[sel], acc[sel], np.repeat(jj, counts)[sel],
-                             np.repeat(dirf, counts)[sel], lim[sel], tuple(x[sel] for x in ends))
-    u = np.where(np.isfinite(u), u, lim)
-    np.clip(u, 0.0, lim, out=u)
-    return u
-
-
-def _polish(u: F64, d: F64, v: F64, a: F64, j: F64, dirs: F64, lim: F64, ends: tuple[F64, ...]) -> F64:
-    """Plain Newton from the no-jerk guess; the few that do not settle go to :func:`_newton`.
-
-    The guess expands about the nearer end of the piece (in position): from the start,
-    the no-jerk root, or the pure-jerk root when starting from rest; from the end
-    (``ends`` = distance to it, velocity and acceleration there) the same backwards,
-    which matters when a phase comes to rest (a cube-root-like crossing).
-    """
-    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        bad0 = ~(np.isfinite(u) & (u >= 0) & (u <= lim))
-        if bad0.any():  # e.g. starting from rest: use the pure-jerk root
-            guess = np.cbrt(6 * d / j)
-            u = np.where(bad0, np.where((guess >= 0) & (guess <= lim), guess, 0.5 * lim), u)
-        span, ve, ae = ends
-        rest = span - d  # distance from the boundary to the piece end
-        near_end = np.abs(rest) < np.abs(d)
-        if near_end.any():
-            w = 2 * rest / (ve + dirs * np.sqrt(np.maximum(ve * ve - 2 * ae * rest, 0.0)))
-            w = np.where(np.isfinite(w) & (w >= 0) & (w <= lim), w, np.cbrt(6 * rest / j))
-            u = np.where(near_end & (w >= 0) & (w <= lim), lim - w, u)
-        j6, j2, a2 = j / 6, j / 2, a / 2
-        step = u
-        for _ in range(NEWTON_PLAIN_ITER):
-            f = j6 * u
-            f += a2
-            f *= u
-            f += v
-            f *= u
-            f -= d
-            fp = j2 * u
-            fp += a
-            fp *= u
-            fp += v
-            step = np.divide(f, fp, out=f)
-            u = u - step
-        # error after a Newton step ~ |f''| step^2 / (2 |f'|)
-        est = j * u
-        est += a
-        est *= step
-        est *= step
-        est /= fp
-        ok = (np.abs(est) <= 2 * NEWTON_TOL_S) & (u >= -NEWTON_TOL_S) & (u <= lim + NEWTON_TOL_S)
-    if not ok.all():
-        sel = np.flatnonzero(~ok)
-        u[sel] = _newton(u[sel], d[sel], v[sel], a[sel], j[sel], dirs[sel], lim[sel])
-    return u
-
-
-def _newton(u: F64, d: F64, v: F64, a: F64, j: F64, dirs: F64, lim: F64) -> F64:
-    """Roots of ``v u + a u^2/2 + j u^3/6 = d`` in ``[0, lim]``; the cubic is monotone there."""
-    out = np.empty_like(u)
-    lo = np.zeros_like(u)
-    hi = lim.copy()
-    u = np.where(np.isfinite(u) & (u >= 0) & (u <= lim), u, 0.5 * lim)
-    idx = np.arange(u.shape[0])
-    with np.errstate(divide="ignore", invalid="ignore"):
-        for _ in range(NEWTON_MAX_ITER):
-            f = u * (v + u * (a / 2 + u * j / 6)) - d
-            g = f * dirs
-            lo = np.where(g < 0, u, lo)
-            hi = np.where(g > 0, u, hi)
-            un = u - f / (v + u * (a + u * j / 2))
-            bad = ~((un > lo) & (un < hi))
-            un = np.where(bad, 0.5 * (lo + hi), un)
-            done = (np.abs(un - u) <= NEWTON_TOL_S) | (g == 0)
-            if done.any():
-                out[idx[done]] = un[done]
-                keep = ~done
-                idx, u, d, v, a, j, dirs, lo, hi = (x[keep] for x in (idx, un, d, v, a, j, dirs, lo, hi))
-            else:
-                u = un
-            if idx.size == 0:
-                return out
-    out[idx] = u
-    return out
+        h = spec.steps_den / spec.steps_num
+        d0 = ((na + 0.5 * dirf) * h - pa) * dirf  # to the first boundary
+        d = np.arange(total, dtype=np.float64)
+        d *= h
+        d += np.repeat(d0 - h * first, counts)
+        return d
+    off = np.arange(total, dtype=np.int64) - np.repeat(first, counts) + 1
+    s_new = np.repeat(na, counts) + np.repeat(direction.astype(np.int64), counts) * off
+    dir_steps = np.repeat(direction, counts)
+    return (spec.boundary_mm(s_new, dir_steps) - np.repeat(pa, counts)) * dir_steps
