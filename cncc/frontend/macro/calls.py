@@ -43,6 +43,10 @@ def run_special(ex: Executor, fr: CallFrame, i: int, block: Block, words: tuple[
     span = Span(ex.it.source_id, block.start, block.end)
     by_op = {c.op: (w, c) for w, c in special}
     if "macro_call" in by_op or "user_macro" in by_op:
+        if "user_macro" in by_op:  # SZGH: the block's other G codes (G99, G91 ...) apply before the call
+            modes = tuple(w for w in words if w.letter == "G" and w is not by_op["user_macro"][0])
+            if modes:
+                ex.run_nc(fr, block, modes, comments=False)
         _macro_call(ex, fr, words, by_op, names, span)
         return
     if "modal_call" in by_op:

@@ -199,10 +199,10 @@ class Executor:
             return
         words = block.words
         statements = block.statements
-        if words or block.comments:
+        names = [s for s in statements if isinstance(s, ProgramName)] if statements else []
+        if words or block.comments or names:
             if any(w.expr is not None for w in words):
                 words = self.substitute(words)
-            names = [s for s in statements if isinstance(s, ProgramName)]
             self.run_words(fr, i, block, words, names)
             if self.stopped:
                 return
@@ -312,7 +312,8 @@ class Executor:
     def assign(self, n: int, value: Value, start: int, end: int) -> None:
         if value is not None and (not math.isfinite(value) or abs(value) > 1e300):
             raise MacroError(dg.MACRO_BAD_VALUE, f"#{n} cannot hold {value!r}", start, end)
-        if self.vars.layout.is_reserved(n) and self.dialect.option("reserved_variable_warning", False):
+        if self.vars.layout.is_reserved(n) and self.dialect.option("reserved_variable_warning", False) \
+                and self.stack and self.stack[-1].kind != "user":  # the controller's own cycle macros may
             self.emit(dg.MACRO_RESERVED, Span(self.it.source_id, start, end),
                       f"#{n} is reserved by the controller; writing it may disturb its own cycles")
         self.vars.write(n, value, start, end)
