@@ -45,7 +45,7 @@ def piece_times(d: F64, counts: I64, v: F64, a: F64, j: F64, length: F64,
     ``ends`` = (distance from the piece start to its end, velocity and acceleration at the end).
     """
     cruise = (j == 0) & (a == 0)
-    with np.errstate(divide="ignore"):
+    with np.errstate(divide="ignore", over="ignore"):
         inv_v = np.where(cruise, 1.0 / v, 0.0)
     u: F64 = d * np.repeat(inv_v, counts)  # cruise steps; the others are overwritten below
     if not cruise.all():
