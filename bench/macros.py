@@ -43,7 +43,8 @@ def run(text: str, max_steps: int) -> tuple[int, int, float]:
     sink = DiagnosticSink()
     macro = MacroOptions(max_steps=max_steps)
     t0 = time.perf_counter()
-    moves = sum(1 for c in lower(src, load_dialect("syntec"), sink, InterpOptions(), macro) if isinstance(c, MOTION_TYPES))
+    cmds = lower(src, load_dialect("syntec"), sink, InterpOptions(), macro)
+    moves = sum(1 for c in cmds if isinstance(c, MOTION_TYPES))
     dt = time.perf_counter() - t0
     if sink.has_errors:
         print("errors:", [d.message for d in sink.items[:3]], file=sys.stderr)
