@@ -151,3 +151,17 @@ def test_queue_reproduces_every_step_within_its_bound(gaps: list[int], flips: li
     assert np.all(r <= t) and np.all(r >= t - e)
     assert np.all(np.diff(r) > 0)
     assert np.array_equal(levels, (d > 0).astype(np.uint8))
+
+
+def test_queue_finds_one_command_for_a_constant_acceleration_run() -> None:
+    # Klipper's bisection over 'add' must find the quadratic that fits the whole run
+    k = np.arange(1, 301, dtype=np.int64)
+    t = 5000 + k * 40_000 - 90 * (k * (k - 1) // 2)  # intervals shrink from 40 us by 90 ns a step
+    chunks = _chunks_from_times([t], [np.ones(t.size, np.int64)])
+    buf = io.StringIO()
+    write_pulses(iter(chunks), "queue", buf, max_error_ns=1000)
+    lines = [ln for ln in buf.getvalue().splitlines() if ln.startswith("queue_step")]
+    assert len(lines) <= 2  # the first steps (after the 5 us offset) may stand apart
+    assert lines[-1].split()[3:] == ["298", "-90"] or lines[-1].split()[3:] == ["300", "-90"]
+    r, _ = read_queue(buf.getvalue().splitlines())["X"]
+    assert np.all(r <= t) and np.all(r >= t - 1000)
