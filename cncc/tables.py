@@ -2,7 +2,7 @@
 
 Offsets (TOML)::
 
-    units = "mm"            # or "inch"
+    units = "mm"            # or "inch", or "um" (micrometres, as SZGH stores tool data)
     [work.G54]              # also G55 ... G59, G59.1 ... G59.9, or the index 1 ... 15
     X = 100.0
     Y = 50.0
@@ -44,9 +44,10 @@ def _load_toml(path: str) -> dict[str, Any]:
 
 def _scale(path: str, raw: dict[str, Any]) -> float:
     units = raw.get("units", "mm")
-    if units not in ("mm", "inch"):
-        raise TableError(f"{path}: units: expected 'mm' or 'inch', got {units!r}")
-    return 25.4 if units == "inch" else 1.0
+    scale = {"mm": 1.0, "inch": 25.4, "um": 0.001}  # "um": SZGH keeps tool data in micrometres
+    if units not in scale:
+        raise TableError(f"{path}: units: expected 'mm', 'inch' or 'um', got {units!r}")
+    return scale[units]
 
 
 def _number(path: str, key: str, value: Any) -> float:

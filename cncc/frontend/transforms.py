@@ -152,7 +152,11 @@ def _factor(it: Interpreter, w: Word) -> float:
 def _scale_on(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     if _swapped(it, c):
         _scale_cancel(it, ctx, c)
-        return
+    else:
+        _scale_apply(it, ctx, c)
+
+
+def _scale_apply(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     ctx.axis_used = True
     rd = it.reader
     named = [k for k in range(3) if AXES[k] in ctx.words]
@@ -184,9 +188,9 @@ def _scale_on(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
 @handler("scale_off")
 def _scale_off(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     if _swapped(it, c):
-        _scale_on(it, ctx, replace(c, name="G51"))
-        return
-    _scale_cancel(it, ctx, c)
+        _scale_apply(it, ctx, c)
+    else:
+        _scale_cancel(it, ctx, c)
 
 
 def _scale_cancel(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
@@ -206,9 +210,7 @@ def _mirror_on(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     if not named:
         it.emit_error(dg.TRANSFORM_WORDS, ctx.span, f"{c.name} needs the mirror axis position (X, Y or Z)")
         return
-    old = it.frame.mirror
-    center = list(old.center_mm) if old is not None else [0.0, 0.0, 0.0]
-    axes = list(old.axes) if old is not None else [False, False, False]
+    center, axes = [0.0, 0.0, 0.0], [False, False, False]  # only the named axes (SZGH E002-18 N70)
     for k in named:  # the mirror line is always absolute (SYNTEC A-53)
         center[k] = it.reader.length_mm(ctx.words[AXES[k]])
         axes[k] = True
@@ -444,12 +446,12 @@ def _tool_offset(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
         delta = v if inc else v - it.pos[k]
         if delta == 0.0 and not inc:
             continue
-        ctx.words[letter] = _word_mm(w, v + math.copysign(amount, delta if delta else 1.0), rd.mm_per_unit)
+        ctx.words[letter] = _word_mm(w, v + (amount if delta >= 0.0 else -amount), rd.mm_per_unit)
     for letter in "IJK":
         w = ctx.words.get(letter)
         if w is not None and w.value != 0.0:
             v = rd.length_mm(w)
-            ctx.words[letter] = _word_mm(w, v + math.copysign(amount, v), rd.mm_per_unit)
+            ctx.words[letter] = _word_mm(w, v + (amount if v > 0.0 else -amount), rd.mm_per_unit)
 
 
 def _word_mm(w: Word, value_mm: float, mm_per_unit: float) -> Word:
