@@ -138,6 +138,7 @@ MACRO_NOT_SUPPORTED = _define("E0325", E, "a macro feature cncc does not impleme
 OWORD_STRUCTURE = _define("E0350", E, "O-word control flow out of order (endwhile without while, no endsub ...)")
 OWORD_NO_SUB = _define("E0351", E, "a call of an O-word subroutine that is neither defined nor found in an -I folder")
 NAMED_UNDEFINED = _define("E0352", E, "a named parameter is read before it was set")
+LINUXCNC_PRINT = _define("N0353", N, "the text of a LinuxCNC (PRINT,...) comment")
 
 # --- E05xx: frames and compensation ------------------------------------------------
 TRANSFORM_WORDS = _define("E0501", E, "a frame or compensation code lacks a word it needs, or a word is out of range")

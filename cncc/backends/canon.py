@@ -151,9 +151,14 @@ def _set_mode(c: SetMode, last_g5x: str, last_g92: str) -> Iterator[str]:
         z = frame.tool_length_mm / frame.units.mm_per_unit
         rest = ", ".join(["0.0000"] * 6)
         yield PREFIX + f"USE_TOOL_LENGTH_OFFSET(0.0000, 0.0000, {_f(z)}, {rest})"
-    elif c.name == "path_mode":
-        mode = "CANON_EXACT_STOP" if c.value is PathMode.EXACT_STOP else "CANON_CONTINUOUS"
-        yield PREFIX + f"SET_MOTION_CONTROL_MODE({mode}, 0.0000)"
+    elif c.name == "path_mode":  # value: a PathMode, or (mode, P tolerance mm, Q naive-CAM mm | None) (G64 P Q)
+        mode_v, tol_mm, naive_mm = c.value if isinstance(c.value, tuple) else (c.value, 0.0, None)
+        mode = {PathMode.EXACT_STOP: "CANON_EXACT_STOP", PathMode.EXACT_PATH: "CANON_EXACT_PATH"}.get(
+            mode_v, "CANON_CONTINUOUS")
+        k = frame.units.mm_per_unit
+        yield PREFIX + f"SET_MOTION_CONTROL_MODE({mode}, {_f(tol_mm / k)})"
+        if naive_mm is not None:
+            yield PREFIX + f"SET_NAIVECAM_TOLERANCE({_f(naive_mm / k)})"
     elif c.name == "feed_mode":
         yield PREFIX + f"SET_FEED_MODE({1 if c.value == 'per_rev' else 0})"
 

@@ -23,7 +23,7 @@ def lower_checked(src: SourceFile, dialect: Dialect, sink: DiagnosticSink, optio
     parser = Parser(dialect, sink, ParseOptions(strict=options.strict))
     interp = Interpreter(dialect, sink, src.source_id, options)
     if dialect.macro_flavour == "linuxcnc":
-        from cncc.frontend.linuxcnc import run_linuxcnc
+        from cncc.frontend.linuxcnc.executor import run_linuxcnc
 
         return run_linuxcnc(src, dialect, sink, interp, parser, macro)
     blocks = parser.blocks(src)

@@ -23,6 +23,7 @@ from cncc import diagnostics as dg
 from cncc.dialects import Dialect
 from cncc.diagnostics import DiagnosticSink
 from cncc.frontend import syntax as sx
+from cncc.frontend.linuxcnc.builder import LinuxcncBuilder
 from cncc.frontend.szgh_builder import SzghBuilder
 from cncc.source import SourceFile, Span
 
@@ -56,7 +57,7 @@ def grammar_text(family: str, comments: tuple[str, ...], block_end: str) -> str:
     return "\n".join(out) + "\n"
 
 
-class _Builder(SzghBuilder, Transformer[Token, Any]):
+class _Builder(SzghBuilder, LinuxcncBuilder, Transformer[Token, Any]):
     """Builds syntax nodes with absolute offsets (``base`` is the line's offset)."""
 
     def __init__(self) -> None:

@@ -26,7 +26,7 @@ from cncc import diagnostics as dg
 from cncc.dialects import CodeDef
 from cncc.frontend import ops
 from cncc.frontend.ops import AXES, handler, target
-from cncc.ir import ZERO6, PathMode, Rapid, SetMode, Vec6
+from cncc.ir import ZERO6, FeedRate, PathMode, Rapid, SetMode, Vec6
 
 if TYPE_CHECKING:
     from cncc.frontend.interp import BlockContext, Interpreter
@@ -57,11 +57,13 @@ def _vec(values: list[float]) -> Vec6:
 
 
 # ---- path modes ------------------------------------------------------------------------------
-def _set_path(it: Interpreter, ctx: BlockContext, mode: PathMode, tol_mm: float | None) -> None:
+def _set_path(it: Interpreter, ctx: BlockContext, mode: PathMode, tol_mm: float | None,
+              naive_mm: float | None = None) -> None:
+    """Set the path mode; like LinuxCNC, report it on every G61/G61.1/G64 (changed or not)."""
     new = it.intern_motion(replace(it.modal.path, mode=mode, blend_tolerance_mm=tol_mm))
-    if new != it.modal.path:
-        it.modal = it.modal.with_(path=new)
-        ctx.out.append(SetMode(ctx.span, it.frame, "path_mode", mode))
+    it.modal = it.modal.with_(path=new)
+    value = (mode, tol_mm or 0.0, naive_mm) if mode is PathMode.CONTINUOUS else (mode, 0.0, None)
+    ctx.out.append(SetMode(ctx.span, it.frame, "path_mode", value))
 
 
 @handler("exact_path_mode")
@@ -76,12 +78,15 @@ def _g61_1(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
 
 @handler("continuous_tolerance")
 def _g64(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
-    pw = ctx.words.get("P")
+    """G64 P (blend tolerance) Q (naive-CAM tolerance, defaults to P)."""
+    pw, qw = ctx.words.get("P"), ctx.words.get("Q")
     tol = it.reader.length_mm(pw) if pw is not None else None
-    if tol is not None and tol < 0:
-        it.emit_error(dg.NUMBER_RANGE, it.word_span(pw), "G64 P must not be negative")  # type: ignore[arg-type]
-        return
-    _set_path(it, ctx, PathMode.CONTINUOUS, tol)
+    naive = it.reader.length_mm(qw) if qw is not None else tol
+    for w, v in ((pw, tol), (qw, naive)):
+        if w is not None and v is not None and v < 0:
+            it.emit_error(dg.NUMBER_RANGE, it.word_span(w), f"G64 {w.letter} must not be negative")
+            return
+    _set_path(it, ctx, PathMode.CONTINUOUS, tol, naive or 0.0)
 
 
 @handler("motion_off")
@@ -103,8 +108,12 @@ def _arc_mode(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
 
 
 def _absolute_centres(it: Interpreter, ctx: BlockContext) -> None:
+    for c in ctx.codes:  # G90.1/G91.1 in this block apply before its motion
+        if c.op in ("arc_absolute", "arc_incremental"):
+            state(it).arc_absolute = c.op == "arc_absolute"
     st = _STATES.get(it)
-    if st is None or not st.arc_absolute or it.modal.motion not in ("arc_cw", "arc_ccw"):
+    motion = next((c.op for c in ctx.codes if c.group == "motion"), it.modal.motion)
+    if st is None or not st.arc_absolute or motion not in ("arc_cw", "arc_ccw"):
         return
     k = it.frame.units.mm_per_unit
     for letter, axis in (("I", 0), ("J", 1), ("K", 2)):
@@ -225,7 +234,8 @@ def _g94(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
 def _inverse_time_feed(it: Interpreter, ctx: BlockContext) -> None:
     """In G93 the block's F (1/min) becomes the path feed length x F for this block."""
     st = _STATES.get(it)
-    if st is None or not st.inverse_time or it.modal.motion not in ("linear", "arc_cw", "arc_ccw"):
+    motion = next((c.op for c in ctx.codes if c.group == "motion"), it.modal.motion)
+    if st is None or not st.inverse_time or motion not in ("linear", "arc_cw", "arc_ccw"):
         return
     if not any(k in ctx.words for k in AXES):
         return
@@ -235,19 +245,22 @@ def _inverse_time_feed(it: Interpreter, ctx: BlockContext) -> None:
         it.modal = it.modal.with_(feed=None)
         return
     end = target(it, ctx)
-    length_mm = _path_length_mm(it, ctx, end)
-    it.modal = it.modal.with_(feed=fw.value * length_mm / it.frame.units.mm_per_unit)
+    length_mm = _path_length_mm(it, ctx, end, motion)
+    feed = fw.value * length_mm / it.frame.units.mm_per_unit
+    it.modal = it.modal.with_(feed=feed)
+    ctx.out[:] = [FeedRate(c.span, c.frame, feed * it.frame.units.mm_per_unit) if isinstance(c, FeedRate) else c
+                  for c in ctx.out]
 
 
-def _path_length_mm(it: Interpreter, ctx: BlockContext, end: Vec6) -> float:
+def _path_length_mm(it: Interpreter, ctx: BlockContext, end: Vec6, motion: str) -> float:
     from cncc.frontend import arcs
 
     start = it.pos
-    if it.modal.motion == "linear":
+    if motion == "linear":
         chord = math.dist(start[:3], end[:3])
         return chord if chord > 0 else math.dist(start[3:], end[3:])
     p = it.frame.plane
-    cw = it.modal.motion == "arc_cw"
+    cw = motion == "arc_cw"
     rw = ctx.words.get("R")
     if rw is not None:
         centre, _ = arcs.center_from_radius(start, end, p, it.reader.length_mm(rw), cw, 1e-3)

@@ -1,0 +1,173 @@
+"""O-word statements and M98/M99 of a running LinuxCNC program.
+
+Consumes one ``O<label> keyword [args]`` line (or an M98/M99 word) and moves the
+executor's program counter or call stack.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+from cncc import diagnostics as dg
+from cncc.frontend.linuxcnc.builder import OWord
+from cncc.frontend.syntax import Block, Word
+from cncc.source import Span
+
+if TYPE_CHECKING:
+    from cncc.frontend.linuxcnc.executor import Frame, LinuxcncExecutor
+
+
+def run_oword(ex: LinuxcncExecutor, fr: Frame, i: int, ow: OWord) -> None:
+    fx = fr.index
+    kw = ow.keyword
+    args = [ex.ev.number(a) for a in ow.args]
+    span = fx.span_of(ow.start, ow.end)
+    if kw == "sub":
+        fr.pc = fx.subs[ow.label][1] + 1  # a definition met in the flow is skipped
+    elif kw in ("endsub", "return"):
+        _return(ex, fr, ow, args, span)
+    elif kw == "call":
+        _call(ex, fr, ow, args, span)
+    elif kw in ("if", "elseif"):
+        if kw == "if":
+            fr.repeats.pop(-fx.endif[i] - 1, None)  # a fresh if: no branch taken yet
+        if not args:
+            ex.fail(dg.OWORD_STRUCTURE, span, f"o{ow.label} {kw} needs a condition [ ... ]")
+        elif kw == "elseif" and _came_from_branch(fr, i):
+            fr.pc = fx.endif[i] + 1
+        elif args[0] != 0.0:
+            _mark_taken(fr, fx.endif[i])
+        else:
+            fr.pc = fx.next_branch[i]
+    elif kw == "else":
+        if _came_from_branch(fr, i):
+            fr.pc = fx.endif[i] + 1
+        else:
+            _mark_taken(fr, fx.endif[i])
+    elif kw == "endif":
+        fr.repeats.pop(-i - 1, None)  # the branch marker of this if
+    else:
+        _loop_word(ex, fr, i, ow, args, span)
+
+
+# An if branch that was entered marks its endif (key -endif-1 in the frame's counters), so
+# that reaching a later elseif/else line jumps to the endif.
+def _mark_taken(fr: Frame, endif: int) -> None:
+    fr.repeats[-endif - 1] = 1
+
+
+def _came_from_branch(fr: Frame, i: int) -> bool:
+    endif = fr.index.endif[i]
+    return fr.repeats.get(-endif - 1) == 1
+
+
+def _loop_word(ex: LinuxcncExecutor, fr: Frame, i: int, ow: OWord, args: list[float], span: Span) -> None:
+    fx, kw = fr.index, ow.keyword
+    lp = fx.loop_at.get(i)
+    if kw in ("break", "continue"):
+        lp = fx.enclosing_loop(ow.label, i)
+        if lp is None:
+            ex.fail(dg.OWORD_STRUCTURE, span, f"o{ow.label} {kw} is not inside a loop labelled o{ow.label}")
+            return
+        if kw == "break":
+            fr.repeats.pop(lp.head, None)
+            fr.pc = lp.end + 1
+        else:
+            fr.pc = lp.end if lp.kind in ("do", "repeat") else lp.head
+        return
+    assert lp is not None
+    if kw == "do":
+        return
+    if kw == "while" and lp.kind == "do":  # the closing while of do ... while
+        if args and args[0] != 0.0:
+            fr.pc = lp.head + 1
+        return
+    if kw == "while":
+        if not args:
+            ex.fail(dg.OWORD_STRUCTURE, span, f"o{ow.label} while needs a condition [ ... ]")
+        elif args[0] == 0.0:
+            fr.pc = lp.end + 1
+        return
+    if kw == "endwhile":
+        fr.pc = lp.head
+        return
+    if kw == "repeat":
+        left = fr.repeats.get(i)
+        if left is None:
+            left = round(args[0]) if args else 0
+        if left <= 0:
+            fr.repeats.pop(i, None)
+            fr.pc = lp.end + 1
+        else:
+            fr.repeats[i] = left - 1
+        return
+    if kw == "endrepeat":
+        fr.pc = lp.head
+
+
+def _call(ex: LinuxcncExecutor, fr: Frame, ow: OWord, args: list[float], span: Span) -> None:
+    from cncc.frontend.linuxcnc.executor import Frame
+
+    index = fr.index
+    found = index.subs.get(ow.label)
+    if found is None:
+        name = ow.label.strip("<>")
+        loaded = ex.load_sub(name)
+        if loaded is None or ow.label not in loaded.subs:
+            ex.fail(dg.OWORD_NO_SUB, span, f"o{ow.label} is not defined in this file or as {name}.ngc in an -I "
+                    "folder", name)
+            return
+        index, found = loaded, loaded.subs[ow.label]
+    if len(ex.stack) > ex.max_depth:
+        ex.fail(dg.MACRO_NESTING, span, f"subroutine calls nested deeper than {ex.max_depth}")
+        return
+    ex.push_scope(args)
+    ex.stack.append(Frame(index, found[0] + 1, ow.label, fr.pc, fr, span))
+
+
+def _return(ex: LinuxcncExecutor, fr: Frame, ow: OWord, args: list[float], span: Span) -> None:
+    if fr.caller is None or fr.name != ow.label:
+        if fr.caller is None:
+            ex.fail(dg.OWORD_STRUCTURE, span, f"o{ow.label} {ow.keyword} outside a subroutine call")
+        else:
+            ex.fail(dg.OWORD_STRUCTURE, span, f"o{ow.label} {ow.keyword} inside the subroutine o{fr.name}")
+        return
+    ex.pop_scope()
+    ex.stack.pop()
+    ex.params.globals_named["_value"] = args[0] if args else 0.0
+    ex.params.globals_named["_value_returned"] = 1.0 if args else 0.0
+
+
+def run_m98(ex: LinuxcncExecutor, fr: Frame, block: Block, words: tuple[Word, ...], m: Word) -> None:
+    """Fanuc-style M98 P<n> L<count> (call program O<n> of this file) and M99 (return)."""
+    from cncc.frontend.linuxcnc.executor import Frame
+
+    span = fr.index.span(block)
+    if round(m.value) == 99:
+        if fr.caller is None:
+            ex.it.ended = True  # M99 in the main program ends it (cncc does not restart it)
+            return
+        if fr.m98_count > 1:
+            fr.m98_count -= 1
+            fr.pc = fr.m98_start
+            return
+        ex.stack.pop()
+        return
+    pw = next((w for w in words if w.letter == "P"), None)
+    lw = next((w for w in words if w.letter == "L"), None)
+    if pw is None:
+        ex.fail(dg.MACRO_BAD_CALL, span, "M98 needs P, the program number")
+        return
+    label = str(round(pw.value))
+    start = fr.index.programs.get(label)
+    if start is None:
+        ex.fail(dg.OWORD_NO_SUB, span, f"M98 P{label}: there is no O{label} in this file", label)
+        return
+    count = round(lw.value) if lw is not None else 1
+    if count < 1:
+        return
+    if len(ex.stack) > ex.max_depth:
+        ex.fail(dg.MACRO_NESTING, span, f"subprogram calls nested deeper than {ex.max_depth}")
+        return
+    new = Frame(fr.index, start + 1, label, fr.pc, fr, span, m98_count=count, m98_start=start + 1)
+    ex.stack.append(new)

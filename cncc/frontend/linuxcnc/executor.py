@@ -1,0 +1,284 @@
+"""Runs a LinuxCNC program: O-word control flow, subroutines, parameters, messages.
+
+Consumes the parser's blocks (``cncc/grammar/rs274ngc.lark``), produces IR commands
+by handing each block, its words evaluated, to the shared
+:class:`~cncc.frontend.interp.Interpreter`.  Per line, as LinuxCNC reads it: every
+expression (words and parameter assignments) is evaluated with the old values, then
+the assignments are made, then the words run.  ``(MSG,...)`` and ``(DEBUG,...)``
+become operator messages, ``(PRINT,...)`` a note.  With ``stop_on_error`` (the
+default) the program stops at its first error, as LinuxCNC's interpreter does;
+cncc's diagnostics carry the interpreter's texts from the dialect's ``[errors]``.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+from collections.abc import Iterator
+from dataclasses import dataclass, field
+
+from cncc import diagnostics as dg
+from cncc.diagnostics import DiagnosticSink, Related, Severity
+from cncc.dialects import Dialect
+from cncc.frontend.interp import Interpreter
+from cncc.frontend.linuxcnc.builder import oword_of
+from cncc.frontend.linuxcnc.evaluate import EvalError, Evaluator, Parameters, Scope
+from cncc.frontend.linuxcnc.flow import FlowIndex
+from cncc.frontend.parser import Parser
+from cncc.frontend.syntax import Assign, Block, CommentItem, Word
+from cncc.ir import Command, Comment, Message
+from cncc.source import SourceFile, Span
+
+_MESSAGE = re.compile(r"^\(\s*(MSG|DEBUG|PRINT)\s*,(.*)\)$", re.IGNORECASE | re.DOTALL)
+_PARAM_IN_TEXT = re.compile(r"#\s*<[^>]*>|#\d+")
+_DETAIL = re.compile(r"\b([A-Z])\b")
+
+
+class ControllerSink(DiagnosticSink):
+    """Forwards to the driver's sink with the controller's error texts; counts errors."""
+
+    def __init__(self, inner: DiagnosticSink, texts: dict[str, str]) -> None:
+        super().__init__()
+        self.inner, self.texts, self.errors = inner, texts, 0
+
+    def emit(self, code: str, span: Span, message: str, related: tuple[Related, ...] = (),
+             severity: Severity | None = None, detail: str = "") -> None:
+        text = self.texts.get(code)
+        if text is not None:
+            if "{0}" in text:
+                m = _DETAIL.search(message)
+                text = text.format(detail or (m.group(1) if m else "?"))
+            message = f"{text} ({message})"
+        info = dg.CODES.get(code)
+        if (severity or (info.severity if info else Severity.ERROR)) is Severity.ERROR:
+            self.errors += 1
+        self.inner.emit(code, span, message, related, severity)
+
+
+@dataclass(slots=True)
+class Frame:
+    """One running program or subroutine."""
+
+    index: FlowIndex
+    pc: int
+    name: str = "main"
+    return_pc: int = -1
+    caller: Frame | None = None
+    call_span: Span | None = None
+    repeats: dict[int, int] = field(default_factory=dict)
+    m98_count: int = 0
+    m98_start: int = 0
+
+
+class LinuxcncExecutor:
+    def __init__(self, dialect: Dialect, sink: DiagnosticSink, it: Interpreter, parser: Parser,
+                 include_dirs: tuple[str, ...] = (), max_steps: int = 5_000_000) -> None:
+        self.dialect = dialect
+        self.sink = ControllerSink(sink, {str(k): str(v) for k, v in dialect.raw.get("errors", {}).items()})
+        it.sink = self.sink
+        self.it = it
+        self.parser = parser
+        self.params = Parameters(system=self._system)
+        self.ev = Evaluator(self.params)
+        self.include_dirs = include_dirs
+        self.max_steps = max_steps
+        self.max_depth = int(dialect.option("max_call_depth", 10))
+        self.stop_on_error = bool(dialect.option("stop_on_error", True))
+        self.comments = {str(k): str(v) for k, v in dialect.raw.get("canon_comments", {}).items()}
+        if not dialect.option("interpreter_comments", True):
+            self.comments = {}
+        self.files: dict[str, FlowIndex] = {}
+        self.stack: list[Frame] = []
+        self.out: list[Command] = []
+        self.stopped = False
+
+    # ---- diagnostics
+    def fail(self, code: str, span: Span, message: str, detail: str = "") -> None:
+        rel = tuple(Related(fr.call_span, f"in the call of {fr.name} from here")
+                    for fr in reversed(self.stack) if fr.call_span is not None)
+        self.sink.emit(code, span, message, rel, detail=detail)
+        self.stopped = True
+
+    def _system(self, name: str) -> float | None:
+        it = self.it
+        k = it.frame.units.mm_per_unit
+        axes = {"_x": 0, "_y": 1, "_z": 2, "_a": 3, "_b": 4, "_c": 5}
+        if name in axes:
+            i = axes[name]
+            return it.pos[i] / k if i < 3 else it.pos[i]
+        values = {
+            "_metric": float(k == 1.0), "_imperial": float(k != 1.0),
+            "_absolute": float(not it.modal.incremental), "_incremental": float(it.modal.incremental),
+            "_feed": it.modal.feed or 0.0, "_rpm": it.modal.spindle_rpm,
+            "_current_tool": float(it.modal.tool_loaded), "_selected_tool": float(it.modal.tool_selected),
+            "_value": 0.0, "_value_returned": 0.0,
+        }
+        return values.get(name)
+
+    # ---- running
+    def run(self, src: SourceFile) -> Iterator[Command]:
+        index = FlowIndex.build(list(self.parser.blocks(src)), src, self.sink)
+        if index is None:
+            return
+        self.stack = [Frame(index, 0)]
+        steps = 0
+        while self.stack and not self.stopped and not self.it.ended:
+            fr = self.stack[-1]
+            if fr.pc >= len(fr.index.blocks):
+                self._fell_off(fr)
+            else:
+                steps += 1
+                if steps > self.max_steps:
+                    b = fr.index.blocks[fr.pc]
+                    self.fail(dg.MACRO_STEP_BUDGET, fr.index.span(b), f"stopped after {self.max_steps} blocks "
+                              "(an endless loop?)")
+                    break
+                self._step(fr)
+            if self.out:
+                yield from self.out
+                self.out = []
+
+    def _fell_off(self, fr: Frame) -> None:
+        if fr.caller is None:
+            self.stack.clear()
+        else:
+            self.stack.pop()
+
+    def _step(self, fr: Frame) -> None:
+        i = fr.pc
+        block = fr.index.blocks[i]
+        fr.pc = i + 1
+        if block.block_delete and self.it.options.block_delete:
+            return
+        errors = self.sink.errors
+        try:
+            oword = oword_of(block.statements)
+            if oword is not None:
+                from cncc.frontend.linuxcnc.control import run_oword
+
+                run_oword(self, fr, i, oword)
+            else:
+                self._block(fr, block)
+        except EvalError as exc:
+            self.fail(exc.code, fr.index.span_of(exc.start, exc.end), exc.message, exc.detail)
+        if self.stop_on_error and self.sink.errors > errors:
+            self.stopped = True
+
+    def _block(self, fr: Frame, block: Block) -> None:
+        words = tuple(self._value_word(w) for w in block.words)
+        sets = [(s.target, self.ev.number(s.expr)) for s in block.statements if isinstance(s, Assign)]
+        for target, value in sets:
+            if target.index is None:
+                self.params.write_name(target.name, value)
+            else:
+                self.params.write_number(self.ev.var_number(target), value)
+        comments = self._messages(fr, block)
+        m98 = [w for w in words if w.letter == "M" and round(w.value) in (98, 99)]
+        if m98:
+            from cncc.frontend.linuxcnc.control import run_m98
+
+            rest = tuple(w for w in words if w not in m98 and w.letter not in "PL")
+            self._run_words(block, rest, comments)
+            run_m98(self, fr, block, words, m98[0])
+            return
+        self._run_words(block, words, comments)
+
+    def _run_words(self, block: Block, words: tuple[Word, ...], comments: tuple[CommentItem, ...]) -> None:
+        if not words and not comments:
+            return
+        nc = Block(block.line, block.start, block.end, words, comments, (), 0, block.percent)
+        before = len(self.out)
+        self.out.extend(self.it.execute(nc))
+        if self.comments:
+            self._interpreter_comments(block, words, before)
+
+    def _interpreter_comments(self, block: Block, words: tuple[Word, ...], at: int) -> None:
+        texts = []
+        for w in words:
+            if w.letter != "G":
+                continue
+            c = self.dialect.code("G", round(w.value * 10))
+            key = {"comp_off": "comp_off", "comp_left": "comp_left", "comp_right": "comp_right",
+                   "comp_left_dynamic": "comp_left", "comp_right_dynamic": "comp_right",
+                   "inverse_time": "inverse_time", "feed_per_min_rs274": "per_min",
+                   "feed_per_rev_rs274": "per_rev"}.get(c.op if c else "", "")
+            if key in self.comments:
+                texts.append(self.comments[key])
+        span = Span(self.it.source_id, block.start, block.end)
+        self.out[at:at] = [Comment(span, self.it.frame, t) for t in texts]
+
+    def _value_word(self, w: Word) -> Word:
+        if w.expr is None:
+            return w
+        v = self.ev.number(w.expr)
+        if w.letter in "GM":
+            v = round(v * 10.0) / 10.0
+        return Word(w.letter, v, True, w.start, w.end)
+
+    def _messages(self, fr: Frame, block: Block) -> tuple[CommentItem, ...]:
+        keep = []
+        for c in block.comments:
+            m = _MESSAGE.match(c.text.strip())
+            if m is None:
+                keep.append(c)
+                continue
+            kind, text = m.group(1).upper(), m.group(2).strip()
+            span = Span(self.it.source_id, c.start, c.end)
+            if kind in ("DEBUG", "PRINT"):
+                text = self._substitute(text, c.start)
+            if kind == "PRINT":
+                self.sink.emit(dg.LINUXCNC_PRINT, span, text)
+            else:
+                self.out.append(Message(span, self.it.frame, text))
+        return tuple(keep)
+
+    def _substitute(self, text: str, pos: int) -> str:
+        return _PARAM_IN_TEXT.sub(lambda mm: self._format_param(mm.group(0), pos), text)
+
+    def _format_param(self, text: str, pos: int) -> str:
+        from cncc.frontend.linuxcnc.builder import param_name
+        from cncc.frontend.syntax import Num, Var
+
+        if "<" in text:
+            got = self.params.lookup(param_name(text))
+            return "######" if got is None else f"{got:.6f}"
+        n = int(text[1:])
+        return f"{self.ev.read(Var(Num(float(n), False, pos, pos), pos, pos)):.6f}"
+
+    # ---- subroutine files
+    def load_sub(self, name: str) -> FlowIndex | None:
+        """The FlowIndex of ``<name>.ngc`` in the -I folders (cached), or None."""
+        if name in self.files:
+            return self.files[name]
+        for folder in self.include_dirs:
+            path = os.path.join(folder, f"{name}.ngc")
+            if os.path.isfile(path):
+                try:
+                    with open(path, encoding="utf-8", errors="replace") as fh:
+                        text = fh.read()
+                except OSError:
+                    continue
+                src = SourceFile(2_000_000 + len(self.files), path, text)
+                index = FlowIndex.build(list(self.parser.blocks(src)), src, self.sink)
+                if index is not None:
+                    self.files[name] = index
+                    return index
+        return None
+
+    def push_scope(self, args: list[float]) -> None:
+        scope = Scope()
+        for k, v in enumerate(args[:30]):
+            scope.numbered[k + 1] = v
+        self.params.scopes.append(scope)
+
+    def pop_scope(self) -> None:
+        if len(self.params.scopes) > 1:
+            self.params.scopes.pop()
+
+
+def run_linuxcnc(src: SourceFile, dialect: Dialect, sink: DiagnosticSink, interp: Interpreter, parser: Parser,
+                 macro: object = None) -> Iterator[Command]:
+    dirs = tuple(getattr(macro, "include_dirs", ()) or ())
+    steps = int(getattr(macro, "max_steps", 5_000_000) or 5_000_000)
+    ex = LinuxcncExecutor(dialect, sink, interp, parser, dirs, steps)
+    return ex.run(src)
