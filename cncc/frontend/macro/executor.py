@@ -115,6 +115,10 @@ class Executor:
         self.block: Block | None = None  # the block being run (for #3000 messages)
         self.exec_codes: dict[tuple[str, int], CodeDef] = {
             key: c for key, c in dialect.codes.items() if c.op in EXEC_OPS}
+        if self.flavour == "szgh":  # User P500-P504: G74/G81-G84 as user cycle programs
+            from cncc.frontend.macro.remap import remapped_codes
+
+            self.exec_codes.update(remapped_codes(dialect, sink))
         self.szgh = SzghStatements(self)
         self._preset(options.presets)
 
@@ -147,6 +151,10 @@ class Executor:
     def run(self, main: SourceFile) -> Iterator[Command]:
         unit = self.library.add(main)
         first, last = unit.section_range(0)
+        starts = unit.section_starts
+        if starts and starts[0] > 0 and all(_is_preamble(b) for b in unit.blocks[:starts[0]]):
+            # '%' and comment lines before the first O number belong to the main program
+            first, last = 0, unit.section_range(starts[0])[1]
         self.stack = [CallFrame(unit, first, last, first, first, "main", None)]
         try:
             yield from self._loop()
@@ -375,3 +383,8 @@ class Executor:
 
 
 __all__ = ["EXEC_OPS", "Executor", "MacroOptions", "program_key"]
+
+
+def _is_preamble(block: Block) -> bool:
+    """A tape-start '%' or a comment-only line (no words, no statements)."""
+    return not block.words and not block.statements
