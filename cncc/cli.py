@@ -20,7 +20,8 @@ def _parser() -> argparse.ArgumentParser:
                     "G-code, timing reports or step pulses.",
         epilog="Exit status: 0 success, 1 errors in the input, 2 bad command line, 4 internal error.")
     p.add_argument("inputs", nargs="*", metavar="file", help="program files ('-' for standard input)")
-    p.add_argument("-x", "--dialect", help="input dialect (default: syntec)")
+    p.add_argument("-x", "--dialect", help="input dialect (default: guessed from the file; -v says which)")
+    p.add_argument("-v", "--verbose", action="store_true", help="notes on what was chosen (the guessed dialect)")
     p.add_argument("-t", "--target", help="target dialect for --emit=gcode (default: the input dialect)")
     p.add_argument("-m", "--machine", default="generic-mill", help="machine model name or TOML file")
     p.add_argument("--emit", default="canon", help="canon | ir | gcode | timing | pulses | none (default: canon)")
@@ -119,6 +120,7 @@ def build_options(ns: argparse.Namespace, error: Any) -> Any:
                    tools_file=ns.tools_file, report_format=ns.report_format,
                    compare=ns.compare, annotate_time=ns.annotate_time,
                    pulse_format=ns.pulse_format, pulse_mode=ns.pulse_mode)
+    opts.verbose = ns.verbose
     for flag in ns.flags:
         if flag == "syntax-only":
             opts.syntax_only = True

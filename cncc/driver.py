@@ -55,6 +55,7 @@ class Options:
     write_dir: str | None = None
     compare: str = ""  # timing report columns: "O0,O1,O2" or machine names (NAME@O1)
     annotate_time: bool = False  # timing: the program with elapsed times as comments
+    verbose: bool = False  # -v: notes on what the driver chose (the guessed dialect)
     # translation (--emit=gcode -t, cncc/backends/gcode, docs/translation.md)
     units: str = ""  # --units: "" as programmed, "mm" or "inch"
     line_numbers: bool = False  # -fline-numbers
@@ -304,6 +305,15 @@ def frame_passes(dialect: Dialect, machine_coords: bool) -> list[Any]:
     return out
 
 
+def guessed_dialect(src: SourceFile, opts: Options, sink: DiagnosticSink) -> Dialect | None:
+    from cncc.frontend.detect import guess_dialect
+
+    name, why = guess_dialect(src.name, src.text)
+    if opts.verbose:
+        sink.emit(dg.DIALECT_GUESSED, Span(src.source_id, 0, 0), f"dialect {name} ({why}); -x selects another")
+    return resolve_dialect(Options(dialect=name, dialect_options=opts.dialect_options), sink)
+
+
 def compile_files(opts: Options, stdin: TextIO | None = None) -> Result:
     sink = DiagnosticSink(werror=opts.werror)
     sources = SourceMap()
@@ -323,6 +333,8 @@ def compile_files(opts: Options, stdin: TextIO | None = None) -> Result:
             continue
         if not src.text.strip():
             sink.emit(dg.EMPTY_PROGRAM, Span(src.source_id, 0, 0), "the program contains no blocks")
+        if opts.dialect is None:  # no -x: guess from the name and contents (reported with -v)
+            dialect = guessed_dialect(src, opts, sink) or dialect
         if opts.list_deps:  # -M: run the front end, list the subprogram files it loaded
             deps: list[str] = []
             for _ in front_end(src, dialect, machine, opts, sink, sources, deps):
