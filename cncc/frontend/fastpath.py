@@ -17,8 +17,8 @@ from __future__ import annotations
 import re
 from collections.abc import Iterator
 
-from cncc.dialects import Dialect
 from cncc.diagnostics import DiagnosticSink
+from cncc.dialects import Dialect
 from cncc.frontend.interp import InterpOptions, Interpreter
 from cncc.frontend.parser import MAX_LINE_CHARS, ParseOptions, Parser
 from cncc.ir import Arc, Command, FeedRate, Linear, Plane
@@ -56,11 +56,15 @@ def _control_codes(dialect: Dialect) -> re.Pattern[str]:
 
 
 def is_straight_line(text: str, dialect: Dialect) -> bool:
-    """True when the program has no macro syntax, calls or jumps at all.
+    """True when the program has no macro syntax, calls or jumps at all, and the
+    dialect reads plain blocks the Fanuc way (``fast_path = false`` in a dialect
+    file turns the fast path off, e.g. for unsigned single-quadrant arc centres).
 
     Conservative: a comment that merely contains a keyword sends the program down
     the general path, which is always correct, only slower.
     """
+    if not dialect.raw.get("fast_path", True):
+        return False
     if "#" in text or "[" in text or "=" in text or "<" in text:
         return False
     upper = text.upper()
@@ -106,7 +110,7 @@ def lower_straight(src: SourceFile, dialect: Dialect, sink: DiagnosticSink, opts
         line_no += 1
         if stale:
             modal = it.modal
-            ok = not (it.ended or modal.cycle or modal.per_rev)
+            ok = not (it.ended or modal.cycle or modal.per_rev or it.frame.polar is not None)  # G16: polar words
             cur = modal.motion
             inc = modal.incremental
             frame = it.frame
