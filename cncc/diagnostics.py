@@ -58,6 +58,7 @@ LINE_TOO_LONG = _define("E0106", E, "a line is longer than the front end accepts
 EMPTY_PROGRAM = _define("W0107", W, "the program contains no blocks")
 MISSING_VALUE = _define("E0108", E, "an address letter has no value")
 DECIMAL_NOT_ALLOWED = _define("E0109", E, "a decimal point is written where the address takes an integer")
+FULLWIDTH = _define("W0110", W, "full-width punctuation (as in some manuals) was read as its ASCII form")
 
 # --- E02xx: modal interpretation -------------------------------------------------
 UNKNOWN_G = _define("E0201", E, "a G code that the dialect does not define")

@@ -20,8 +20,8 @@ from lark import Lark, Token, Transformer
 from lark.exceptions import LarkError, UnexpectedCharacters, UnexpectedEOF, UnexpectedInput
 
 from cncc import diagnostics as dg
-from cncc.dialects import Dialect
 from cncc.diagnostics import DiagnosticSink
+from cncc.dialects import Dialect
 from cncc.frontend import syntax as sx
 from cncc.frontend.linuxcnc.builder import LinuxcncBuilder
 from cncc.frontend.szgh_builder import SzghBuilder
@@ -201,6 +201,8 @@ def _lark(family: str, comments: tuple[str, ...], block_end: str) -> tuple[Lark,
     return parser, builder
 
 
+_FULLWIDTH = str.maketrans({"；": ";", "（": "(", "）": ")", "［": "[", "］": "]", "＃": "#", "＝": "=", "．": ".",
+                            "，": ",", "－": "-", "＋": "+", "／": "/", "　": " "})
 _WORD_RE = re.compile(r"([A-Za-z])[ \t]*([-+]?)[ \t]*(\d+\.?\d*|\.\d+)")
 
 
@@ -254,11 +256,26 @@ class Parser:
         line = src.text[pos:end]
         if not line or line.isspace():
             return
+        if not line.isascii():
+            line = self._fullwidth(src, line, pos)
         m = self._plain.fullmatch(line)
         if m is not None:
             yield self._plain_block(line, pos, line_no, m.start("c"), m.group("c"))
         else:
             yield from self._lark_blocks(src, line, pos, line_no)
+
+    def _fullwidth(self, src: SourceFile, line: str, base: int) -> str:
+        """Lenient: full-width punctuation (``；（）``, as in some manuals) read as ASCII.
+
+        The translation maps one character to one, so offsets stay valid.
+        """
+        norm = line.translate(_FULLWIDTH)
+        if norm == line or self.options.strict:
+            return line
+        col = next(i for i, (a, b) in enumerate(zip(line, norm, strict=True)) if a != b)
+        self.sink.emit(dg.FULLWIDTH, Span(src.source_id, base + col, base + col + 1),
+                       f"full-width {line[col]!r} read as {norm[col]!r}")
+        return norm
 
     # ---- fast path
     def _plain_block(self, line: str, base: int, line_no: int, cpos: int, comment: str) -> sx.Block:

@@ -81,3 +81,12 @@ def test_grammar_variants_follow_the_dialect() -> None:
     assert "SLASH_COMMENT" not in g and "SEMI_COMMENT" not in g and "BLOCK_END" not in g
     g = grammar_text("fanuc", ("paren", "semi"), "")
     assert "SEMI_COMMENT" in g
+
+
+def test_fullwidth_punctuation_lenient_and_strict() -> None:
+    (b,), sink = parse("G01 X1.（note）；")
+    assert words(b) == [("G", 1.0, False), ("X", 1.0, True)]
+    assert [c.text for c in b.comments] == ["(note)"]
+    assert [d.code for d in sink] == ["W0110"]
+    _, sink = parse("G01 X1.；", strict=True)
+    assert [d.code for d in sink] == ["E0104"]
