@@ -13,7 +13,7 @@ All lengths are millimetres and all angles degrees, whatever the program's units
 from __future__ import annotations
 
 import enum
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 AXES: tuple[str, ...] = ("X", "Y", "Z", "A", "B", "C")
 """Axis order of every 6-vector in the IR."""
@@ -109,21 +109,22 @@ class Frame:
     comp_radius_mm: float = 0.0
     comp_index: int = 0  # D number
     incremental: bool = False  # G91 when programmed: transforms rotate/scale the increment (see docs/frames.md)
+    # Program origin in machine coordinates (work + local + G92), computed once per frame
+    # because passes ask for it on every command.
+    total_offset_mm: Vec6 = field(init=False, repr=False, compare=False, default=ZERO6)
 
-    @property
-    def total_offset_mm(self) -> Vec6:
-        """Program origin in machine coordinates (work + local + G92)."""
+    def __post_init__(self) -> None:
         if self.machine_coords:
-            return ZERO6
+            return
         w, loc, g = self.work_offset_mm, self.local_offset_mm, self.g92_offset_mm
-        return (
+        object.__setattr__(self, "total_offset_mm", (
             w[0] + loc[0] + g[0],
             w[1] + loc[1] + g[1],
             w[2] + loc[2] + g[2],
             w[3] + loc[3] + g[3],
             w[4] + loc[4] + g[4],
             w[5] + loc[5] + g[5],
-        )
+        ))
 
     @property
     def is_identity(self) -> bool:
