@@ -100,17 +100,26 @@ def test_jerk_phase_step_times_match_bisection(rows: list[tuple[float, float, fl
     after = n0 + np.cumsum(s["dir"])
     boundary = (after - 0.5 * s["dir"]) / r
     ph = s["phase"]
-    lo = np.zeros(ph.size)
-    hi = traj.duration_s[ph]
-    local = crossing_times_bisect(traj, 0, boundary, ph, lo, hi)
-    # a phase with a velocity zero crosses a boundary twice: compare with the root nearest the step
-    t_true = traj.t0_s[ph] + local
-    far = np.abs(s["t_ns"] - t_true * 1e9) > 1.0
-    if far.any():  # non-monotone phase: bisect on the half-interval around the step instead
-        t_loc = s["t_ns"][far] / 1e9 - traj.t0_s[ph[far]]
-        span = 2e-4
-        ref = crossing_times_bisect(traj, 0, boundary[far], ph[far], np.maximum(t_loc - span, 0),
-                                    np.minimum(t_loc + span, hi[far]))
-        t_true[far] = traj.t0_s[ph[far]] + ref
+    # the monotone stretch of its phase the step lies in (edges at the velocity zeros)
+    edges = np.array([monotone_edges(float(traj.v0_mm_s[k, 0]), float(traj.a0_mm_s2[k, 0]),
+                                     float(traj.j_mm_s3[k, 0]), float(traj.duration_s[k])) for k in ph])
+    t_loc = s["t_ns"] / 1e9 - traj.t0_s[ph]
+    col = np.clip((t_loc[:, None] > edges).sum(axis=1) - 1, 0, 2)
+    lo, hi = edges[np.arange(ph.size), col], edges[np.arange(ph.size), col + 1]
+    mid = 0.5 * (lo + hi)
+    v_mid = traj.v0_mm_s[ph, 0] + traj.a0_mm_s2[ph, 0] * mid + traj.j_mm_s3[ph, 0] * mid**2 / 2
+    assert np.all(np.sign(v_mid) == s["dir"])  # each step moves the way its stretch does
+    t_true = traj.t0_s[ph] + crossing_times_bisect(traj, 0, boundary, ph, lo, hi)
     assert np.abs(s["t_ns"] - t_true * 1e9).max() <= 1.0
 
+
+def monotone_edges(v: float, a: float, j: float, dur: float) -> list[float]:
+    """``[0, z1, z2, dur]``: the velocity zeros inside the phase (repeated ends where there are fewer)."""
+    if j:  # v + a t + (j/2) t^2 = 0, in the form without cancellation
+        disc = a * a - 2 * j * v
+        q = -0.5 * (a + math.copysign(math.sqrt(disc), a)) if disc >= 0 else 0.0
+        cands = [q / (j / 2), v / q] if q else []
+    else:
+        cands = [-v / a] if a else []
+    zs = sorted(z for z in cands if math.isfinite(z) and 0 < z < dur)
+    return [0.0, *[*zs, dur, dur][:2], dur]

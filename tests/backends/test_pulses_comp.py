@@ -60,6 +60,7 @@ def test_reversal_delay_pauses_every_axis() -> None:
         before = ta < 50_000_000
         assert np.all(shift[before] == 0) and np.all(shift[~before] == 4_000_000)
     assert b[-1].t_end_ns == a[-1].t_end_ns + 4_000_000
+    assert (a[-1].pause_ns, b[-1].pause_ns) == (0, 4_000_000)  # what the planner's timing leaves out
 
 
 def test_step_rate_above_maximum_names_the_command() -> None:

@@ -77,7 +77,12 @@ class AxisSteps:
 
 @dataclass(frozen=True, slots=True)
 class StepChunk:
-    """The steps of every axis in one window ``[t_start_ns, t_end_ns)`` (warped time)."""
+    """The steps of every axis in one window ``[t_start_ns, t_end_ns)`` (warped time).
+
+    ``pause_ns`` is the reversal delay (SZGH Axis P68) inserted into the time line so
+    far, up to the end of this window: the planner does not know about it, so the
+    program takes this much longer than the trajectory says.
+    """
 
     layout: PulseLayout
     index: int
@@ -85,6 +90,7 @@ class StepChunk:
     t_end_ns: int
     horizon_ns: int
     axes: tuple[AxisSteps, ...]
+    pause_ns: int = 0
 
     @property
     def step_count(self) -> int:

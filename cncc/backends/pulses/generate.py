@@ -193,7 +193,8 @@ class _Post:
         holds = [m.hold_ns for m in self.merger if m.hold_ns is not None]
         if holds:
             horizon = min(horizon, min(holds) - self.layout.max_dir_setup_ns - 1)
-        chunk = StepChunk(self.layout, self.index, self.t_start_ns, end_ns, horizon, tuple(axes))
+        chunk = StepChunk(self.layout, self.index, self.t_start_ns, end_ns, horizon, tuple(axes),
+                          round(self.total_pause_s * 1e9))
         self.index += 1
         self.t_start_ns = end_ns
         return chunk

@@ -36,11 +36,12 @@ _NPZ_FIELDS = (("t_ns", np.int64), ("dir", np.int8), ("backlash", np.bool_), ("p
 
 @dataclass(slots=True)
 class WriteStats:
-    """What was written: steps per axis, chunks, and the end time."""
+    """What was written: steps per axis, chunks, the end time and the reversal pauses in it."""
 
     steps: dict[str, int] = field(default_factory=dict)
     chunks: int = 0
     end_ns: int = 0
+    pause_ns: int = 0
 
 
 def _counting(chunks: Iterable[StepChunk], stats: WriteStats) -> Iterable[StepChunk]:
@@ -49,6 +50,7 @@ def _counting(chunks: Iterable[StepChunk], stats: WriteStats) -> Iterable[StepCh
             stats.steps[name] = stats.steps.get(name, 0) + a.count
         stats.chunks += 1
         stats.end_ns = c.t_end_ns
+        stats.pause_ns = c.pause_ns
         yield c
 
 
