@@ -48,6 +48,7 @@ if TYPE_CHECKING:
     from cncc.ir.trajectory import Trajectory
     from cncc.passes.planning.emit import Rows
     from cncc.passes.planning.limits import AxisLimits
+    from cncc.passes.planning.profile import Phases
     from cncc.passes.planning.segments import Segments
 
 
@@ -84,18 +85,33 @@ def _rapid_limit() -> int:
 
 def _plan_path(run: object, machine: MachineModel, limits: AxisLimits, level: int, rule: CornerRule,
                sink: DiagnosticSink) -> list[Rows]:
-    from cncc.passes.planning.blending import round_corners
+    from cncc.passes.planning.emit import path_rows
     from cncc.passes.planning.geometry import PathRun
     from cncc.passes.planning.segments import make_segments, split_at_stops
 
     assert isinstance(run, PathRun)
     if level >= 2 and rule is CornerRule.BLEND:
-        run = round_corners(run, limits, machine)
+        from cncc.passes.planning.corners import plan_blended
+
+        parts = plan_blended(run, machine, limits, lambda part: _profile(part, machine, limits, 2, rule, sink))
+        if level >= 3:
+            from cncc.passes.planning.optimal import optimise
+
+            parts = [(part, optimise(part, ph, sink)) for part, ph in parts]
+        return [path_rows(part, ph) for part, ph in parts]
     seg = make_segments(run, limits, machine)
     if seg is None:
         return []
     _corner_caps(seg, limits, machine, level, rule)
-    return [_plan_part(part, machine, limits, level, rule, sink) for part in split_at_stops(seg)]
+    out = []
+    for part in split_at_stops(seg):
+        ph = _profile(part, machine, limits, level, rule, sink)
+        if level >= 3 and part.count > 1:
+            from cncc.passes.planning.optimal import optimise
+
+            ph = optimise(part, ph, sink)
+        out.append(path_rows(part, ph))
+    return out
 
 
 def _corner_caps(seg: Segments, limits: AxisLimits, machine: MachineModel, level: int, rule: CornerRule) -> None:
@@ -119,40 +135,38 @@ def _corner_caps(seg: Segments, limits: AxisLimits, machine: MachineModel, level
     seg.vvert[1:-1] = np.minimum(seg.vvert[1:-1], caps)
 
 
-def _plan_part(seg: Segments, machine: MachineModel, limits: AxisLimits, level: int, rule: CornerRule,
-               sink: DiagnosticSink) -> Rows:
+def _profile(seg: Segments, machine: MachineModel, limits: AxisLimits, level: int, rule: CornerRule,
+             sink: DiagnosticSink) -> Phases:
+    """The path profile of one part (rest to rest) at -O0..-O2 (-O3 starts from -O2's)."""
     import numpy as np
 
     from cncc.ir.trajectory import Limit
     from cncc.passes.planning.blending import reduce_accel
-    from cncc.passes.planning.emit import path_rows
+    from cncc.passes.planning.fir import fir_profile
     from cncc.passes.planning.onedim import ruckig_move
     from cncc.passes.planning.profile import Phases, boundary_speeds, trapezoids
     from cncc.passes.planning.segments import take_off_speed
 
     if level == 0:
         t = seg.length / seg.vcap
-        ph = Phases(np.concatenate([[0.0], np.cumsum(t)[:-1]]), t, seg.s0[:-1], seg.vcap.copy(),
-                    np.zeros_like(t), np.zeros_like(t), seg.vlim.copy(), np.arange(seg.count))
-        return path_rows(seg, ph)
+        return Phases(np.concatenate([[0.0], np.cumsum(t)[:-1]]), t, seg.s0[:-1], seg.vcap.copy(),
+                      np.zeros_like(t), np.zeros_like(t), seg.vlim.copy(), np.arange(seg.count))
     if level == 1:
         if rule is CornerRule.SPEED_STEP:
             seg.vvert[0], seg.vvert[-1] = take_off_speed(seg, limits, machine)
         x = boundary_speeds(seg.length, seg.vcap, seg.acap, seg.vvert**2)
-        return path_rows(seg, trapezoids(seg.length, seg.vcap, seg.acap, x, seg.vlim, int(Limit.ACCEL)))
+        return trapezoids(seg.length, seg.vcap, seg.acap, x, seg.vlim, int(Limit.ACCEL))
     seg.acap = reduce_accel(seg, limits, machine.interpolation_period_s)
     if seg.count == 1:
         ph = ruckig_move(float(seg.length[0]), float(seg.vcap[0]), float(seg.acap[0]), float(seg.jcap[0]),
                          int(seg.vlim[0]))
-        return path_rows(seg, ph)
-    from cncc.passes.planning.fir import fir_profile
+        if ph is not None:
+            return ph
+        from cncc import diagnostics as dg
+        from cncc.source import NO_SPAN
 
-    ph = fir_profile(seg)
-    if level >= 3:
-        from cncc.passes.planning.optimal import optimise
-
-        ph = optimise(seg, ph, sink)
-    return path_rows(seg, ph)
+        sink.emit(dg.PLAN_FALLBACK, NO_SPAN, "ruckig could not plan a move; the filtered profile is used")
+    return fir_profile(seg)
 
 
 @register

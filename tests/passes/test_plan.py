@@ -89,12 +89,29 @@ def test_corner_exact_stop() -> None:
 
 
 def test_corner_blend_within_tolerance() -> None:
-    traj = plan(_corner(), GENERIC, level=2)
+    turn = math.radians(12)  # a shallow corner: rounding it is faster than stopping
+    end = (60 + 50 * math.cos(turn), 10 + 50 * math.sin(turn))
+    traj = plan([line((10, 10), (60, 10), 3000), line((60, 10), end, 3000)], GENERIC, level=2)
     t = np.linspace(0, traj.duration_total_s, 20001)
-    p, _, _, _ = traj.sample(t)
-    dist = np.linalg.norm(p[:, :2] - np.array([60.0, 10.0]), axis=1).min()
+    p, v, _, _ = traj.sample(t)
+    dist = np.linalg.norm(p[:, :2] - np.array([60.0, 10.0]), axis=1)
     delta = GENERIC.blend_tolerance_mm
-    assert 0.95 * delta <= dist <= 1.05 * delta
+    assert 0.95 * delta <= dist.min() <= 1.05 * delta
+    assert np.linalg.norm(v[np.argmin(dist)]) > 10.0  # passes the corner without stopping
+
+
+def test_sharp_corner_stops_when_that_is_faster() -> None:
+    # 90 degrees within 0.01 mm: the rounded corner is nearly a stop, so -O2 stops and
+    # each side becomes ruckig's time-optimal rest-to-rest move: the exact-stop time.
+    stop_machine = load_machine("generic-mill", {"corner_rule": "exact-stop"})
+    t_stop = plan(_corner(), stop_machine, level=2).duration_total_s
+    traj = plan(_corner(), GENERIC, level=2)
+    assert speed_at_boundary(traj, 1) == pytest.approx(0.0, abs=1e-9)
+    assert traj.duration_total_s == pytest.approx(t_stop, rel=1e-9)
+    v, a, j = 50.0, A_X, J_X  # each 50 mm side: a 7-phase S-curve (reaches A and the feed)
+    assert v / a > a / j
+    side = 50 / v + v / a + a / j
+    assert t_stop == pytest.approx(2 * side, rel=1e-6)
 
 
 def test_dwell_forces_a_stop() -> None:

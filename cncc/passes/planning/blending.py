@@ -32,7 +32,11 @@ from cncc.passes.planning.segments import Segments
 MAX_BLEND_CHORDS = 64
 
 
-def round_corners(run: PathRun, limits: AxisLimits, machine: MachineModel) -> PathRun:
+def round_corners(run: PathRun, limits: AxisLimits, machine: MachineModel,
+                  sharp: np.ndarray | None = None) -> PathRun:
+    """The run with its corners rounded; ``sharp`` (``(k+1,)`` bool) marks vertices left as
+    they are (the planner stops there).  The result's ``origin`` maps each new point to the
+    vertex it comes from."""
     pts = run.points
     k = pts.shape[0] - 1
     if k < 2:
@@ -46,6 +50,8 @@ def round_corners(run: PathRun, limits: AxisLimits, machine: MachineModel) -> Pa
     tol = run.tol_mm[:-1]
     ok = (~run.arc_vertex[1:-1]) & (theta > 1e-7) & (theta < np.pi - 1e-3) & (tol > 0)
     ok &= (length[:-1] > 1e-9) & (length[1:] > 1e-9)
+    if sharp is not None:
+        ok &= ~sharp[1:-1]
     if not ok.any():
         return run
     half = theta / 2
@@ -92,7 +98,9 @@ def _rebuild(run: PathRun, pts: FloatArray, u_in: FloatArray, e2: FloatArray, d_
                                                                               end_owner + 1)))
     arcv = np.zeros(new_pts.shape[0], dtype=bool)
     arcv[1:-1] = run.arc_vertex[1:-1][owner] | ((nb > 0) & (j > 0) & (j < nb))
-    return PathRun(new_pts, run.cmd[src], run.rapid[src], run.feed_mm_s[src], run.tol_mm[src], arcv, run.stop_cmd)
+    origin = np.concatenate([[0], owner + 1, [k]])
+    return PathRun(new_pts, run.cmd[src], run.rapid[src], run.feed_mm_s[src], run.tol_mm[src], arcv, run.stop_cmd,
+                   origin)
 
 
 def _reach_mm(seg: Segments, caps: FloatArray, period_s: float) -> FloatArray:
@@ -115,10 +123,11 @@ def _caps_from(seg: Segments, du: FloatArray, caps: FloatArray, period_s: float,
     cs = np.vstack([np.zeros((1, 6)), np.cumsum(du, axis=0)])
     lo = np.arange(xv.size)
     hi = np.searchsorted(xv, xv + reach, side="right")
-    window = cs[hi] - cs[lo]  # (k-1, 6) sum over the window starting at each vertex
-    w = np.stack([-cover_min(xv.size, lo, hi, -window[:, i]) for i in range(6)], axis=1)
+    axes = np.flatnonzero(du.max(axis=0) > 1e-12)  # only the axes that turn
+    window = cs[hi][:, axes] - cs[lo][:, axes]  # (k-1, m) sum over the window starting at each vertex
+    w = -cover_min(xv.size, lo, hi, -window)
     with np.errstate(divide="ignore"):
-        cap = np.where(w > 1e-15, budget[None, :] / np.maximum(w, 1e-300), np.inf).min(axis=1)
+        cap = np.where(w > 1e-15, budget[None, axes] / np.maximum(w, 1e-300), np.inf).min(axis=1, initial=np.inf)
     return np.where(du.max(axis=1) > 1e-12, cap, np.inf)
 
 

@@ -40,23 +40,30 @@ def eval_phase(ph: Phases, idx: np.ndarray, tau: FloatArray) -> tuple[FloatArray
     return s, v0 + a0 * tau + j * tau**2 / 2, a0 + j * tau
 
 
+def crossing_times(ph: Phases, cuts: FloatArray) -> tuple[np.ndarray, FloatArray]:
+    """For each ``s`` in ``cuts`` (sorted, inside the profile): the phase and the local time
+    at which the (monotone) path coordinate reaches it, by vectorised bisection."""
+    s_end = ph.s0 + ph.v0 * ph.dur + ph.a0 * ph.dur**2 / 2 + ph.j * ph.dur**3 / 6
+    idx = np.clip(np.searchsorted(s_end, cuts, side="left"), 0, max(ph.t0.size - 1, 0))
+    lo, hi = np.zeros(idx.size), ph.dur[idx].copy()
+    for _ in range(56):
+        mid = (lo + hi) / 2
+        s_mid, _, _ = eval_phase(ph, idx, mid)
+        below = s_mid < cuts
+        lo = np.where(below, mid, lo)
+        hi = np.where(below, hi, mid)
+    return idx, (lo + hi) / 2
+
+
 def split_at(ph: Phases, cuts: FloatArray) -> Phases:
     """Split phases where ``s`` crosses each value of ``cuts`` (sorted)."""
     if cuts.size == 0 or ph.t0.size == 0:
         return ph
     s_end = ph.s0 + ph.v0 * ph.dur + ph.a0 * ph.dur**2 / 2 + ph.j * ph.dur**3 / 6
-    idx = np.searchsorted(s_end, cuts, side="left")
-    idx = np.clip(idx, 0, ph.t0.size - 1)
+    idx = np.clip(np.searchsorted(s_end, cuts, side="left"), 0, ph.t0.size - 1)
     inside = (cuts > ph.s0[idx] + 1e-12) & (cuts < s_end[idx] - 1e-12)
-    idx, target = idx[inside], cuts[inside]
-    lo, hi = np.zeros(idx.size), ph.dur[idx].copy()
-    for _ in range(60):
-        mid = (lo + hi) / 2
-        s_mid, _, _ = eval_phase(ph, idx, mid)
-        below = s_mid < target
-        lo = np.where(below, mid, lo)
-        hi = np.where(below, hi, mid)
-    t_cut = ph.t0[idx] + (lo + hi) / 2
+    idx, tau = crossing_times(ph, cuts[inside])
+    t_cut = ph.t0[idx] + tau
     starts = np.unique(np.concatenate([ph.t0, t_cut]))
     owner = np.clip(np.searchsorted(ph.t0, starts, side="right") - 1, 0, ph.t0.size - 1)
     tau = starts - ph.t0[owner]

@@ -20,6 +20,8 @@ For a single move this is the classic 7-phase S-curve (time ``L/v + v/A + A/J``)
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 
 from cncc.ir.trajectory import FloatArray, Limit
@@ -27,89 +29,209 @@ from cncc.passes.planning.profile import Phases, boundary_speeds, trapezoids
 from cncc.passes.planning.ranges import cover_min, range_max, range_min
 from cncc.passes.planning.segments import Segments
 
-MAX_PEAK_ROUNDS = 12
+MAX_CUT_ROUNDS = 3
+KNOT_SNAP_S = 1e-9
+
+
+@dataclass
+class _Grid:
+    """Elementary intervals between all cap-region ends, with their caps."""
+
+    bp: FloatArray  # (n+1,) breakpoints on s
+    vcap: FloatArray  # (n,) widened speed cap
+    acap: FloatArray  # (n,) acceleration cap (window minimum)
+    limit: np.ndarray  # (n,) int8
+    pins: FloatArray  # positions where the path is at rest (besides both ends)
 
 
 def fir_profile(seg: Segments) -> Phases:
+    ph, tf = unfiltered_profile(seg)
+    return _filter(ph, tf, float(seg.s0[-1]))
+
+
+def unfiltered_profile(seg: Segments) -> tuple[Phases, float]:
+    """TOPP on the widened caps with the short peaks cut, and the filter width ``Tf``.
+
+    Interior vertices whose cap is zero are rest points; the filtered profile of a part
+    from rest to rest lasts the unfiltered time plus ``Tf``.
+    """
     tf = float(np.max(seg.acap / seg.jcap))
-    extra = np.zeros((0, 2))
-    for _ in range(MAX_PEAK_ROUNDS):
-        ph = _topp(seg, tf, extra)
-        peaks = _short_peaks(ph, tf)
-        if peaks.size == 0:
-            return _filter(ph, tf, float(seg.s0[-1]))
-        extra = np.vstack([extra, peaks])
-    # Fallback: a window of 2 A / J bounds the jerk even where the acceleration flips.
-    ph = _topp(seg, 2 * tf, np.zeros((0, 2)))
-    return _filter(ph, 2 * tf, float(seg.s0[-1]))
+    grid = _grid(seg, tf)
+    ph = _topp(grid)
+    for _ in range(MAX_CUT_ROUNDS):
+        cuts = peak_cuts(ph, tf)
+        if cuts.size == 0:
+            return merge_phases(ph), tf
+        grid = _with_cuts(grid, cuts)
+        ph = _topp(grid)
+    # Numerical safety net (never reached in the test suite): a window of 2 A / J bounds
+    # the jerk even where the acceleration flips.
+    return _topp(_grid(seg, 2 * tf)), 2 * tf
 
 
-def _topp(seg: Segments, tf: float, extra: FloatArray) -> Phases:
+def _grid(seg: Segments, tf: float) -> _Grid:
     total = float(seg.s0[-1])
     inner = seg.vvert[1:-1]
     binding = inner < np.minimum(seg.vcap[:-1], seg.vcap[1:])
     xv, vv = seg.s0[1:-1][binding], inner[binding]
-    if extra.size:
-        xv, vv = np.concatenate([xv, extra[:, 0]]), np.concatenate([vv, extra[:, 1]])
     v_near = np.maximum(np.concatenate([seg.vcap[:1], seg.vcap]), np.concatenate([seg.vcap, seg.vcap[-1:]]))
     v_lo = np.concatenate([seg.s0[:-1] - seg.vcap * tf / 2, xv - vv * tf / 2])
     v_hi = np.concatenate([seg.s0[1:] + seg.vcap * tf / 2, xv + vv * tf / 2])
     v_val = np.concatenate([seg.vcap, vv])
     ends = np.clip(np.concatenate([seg.s0, v_lo, v_hi, seg.s0 - v_near * tf, seg.s0 + v_near * tf]), 0.0, total)
     bp = np.unique(ends)
-    n = bp.size - 1
-
-    def cover(lo: FloatArray, hi: FloatArray, val: FloatArray) -> FloatArray:
-        lo_i = np.searchsorted(bp, np.clip(lo, 0.0, total), side="left")
-        hi_i = np.searchsorted(bp, np.clip(hi, 0.0, total), side="right") - 1
-        return cover_min(n, lo_i, hi_i, val)
-
-    vcap = cover(v_lo, v_hi, v_val)
-    acap = _window_accel(seg, bp, vcap, tf)
-    length = np.diff(bp)
-    xcap = np.full(n + 1, np.inf)
-    xcap[0] = xcap[-1] = 0.0
+    vcap = _cover(bp, v_lo, v_hi, v_val)
     k = np.clip(np.searchsorted(seg.s0, (bp[:-1] + bp[1:]) / 2, side="right") - 1, 0, seg.count - 1)
-    x = boundary_speeds(length, vcap, acap, xcap)
     limit = np.where(vcap < seg.vcap[k] * (1 - 1e-9), Limit.CORNER, seg.vlim[k]).astype(np.int8)
-    return trapezoids(length, vcap, acap, x, limit, int(Limit.ACCEL))
+    pins = seg.s0[1:-1][inner <= 0.0]
+    return _Grid(bp, vcap, _window_accel(seg, bp, vcap, tf, _xcap(bp, pins)), limit, pins)
 
 
-def _window_accel(seg: Segments, bp: FloatArray, vcap: FloatArray, tf: float) -> FloatArray:
-    """Acceleration cap of each interval: min over the segments reachable within ``Tf``.
+def _xcap(bp: FloatArray, pins: FloatArray) -> FloatArray:
+    xcap = np.full(bp.size, np.inf)
+    xcap[0] = xcap[-1] = 0.0
+    xcap[np.clip(np.searchsorted(bp, pins), 0, bp.size - 1)] = 0.0
+    return xcap
 
-    ``D`` (distance travelled in ``Tf``) is bounded by ``Tf`` times the largest speed cap
-    within ``D``; iterating from ``D = Tf * max(vcap)`` keeps a valid, shrinking bound.
+
+def _cover(bp: FloatArray, lo: FloatArray, hi: FloatArray, val: FloatArray) -> FloatArray:
+    total = float(bp[-1])
+    lo_i = np.searchsorted(bp, np.clip(lo, 0.0, total), side="left")
+    hi_i = np.searchsorted(bp, np.clip(hi, 0.0, total), side="right") - 1
+    return cover_min(bp.size - 1, lo_i, hi_i, val)
+
+
+def _topp(grid: _Grid) -> Phases:
+    length = np.diff(grid.bp)
+    x = boundary_speeds(length, grid.vcap, grid.acap, _xcap(grid.bp, grid.pins))
+    return trapezoids(length, grid.vcap, grid.acap, x, grid.limit, int(Limit.ACCEL))
+
+
+def _window_accel(seg: Segments, bp: FloatArray, vcap: FloatArray, tf: float, xcap: FloatArray) -> FloatArray:
+    """Acceleration cap of each interval: min over the segments the filter window can reach.
+
+    While the filtered position passes ``x`` the unfiltered one is within ``D`` of it,
+    ``D <= Tf * max speed within D``.  The speed is bounded by an *envelope*: the TOPP
+    profile with each interval's own (un-windowed, hence larger) acceleration cap, which
+    is above every profile with smaller caps.  Iterating ``D`` from ``Tf * max(envelope)``
+    keeps a valid, shrinking bound; near a slow corner ``D`` becomes tiny, so the full
+    acceleration is used right up to it.
     """
-    dist = np.full(vcap.size, tf * float(vcap.max()))
+    k_lo = np.clip(np.searchsorted(seg.s0, bp[:-1], side="right") - 1, 0, seg.count - 1)
+    k_hi = np.clip(np.searchsorted(seg.s0, bp[1:], side="left"), 1, seg.count)
+    own = range_min(seg.acap, k_lo, k_hi)
+    env = _envelope(bp, vcap, own, xcap)
+    dist = np.full(vcap.size, tf * float(env.max()))
     for _ in range(4):
         lo = np.searchsorted(bp[1:], bp[:-1] - dist, side="right")
         hi = np.searchsorted(bp[:-1], bp[1:] + dist, side="left")
-        dist = np.minimum(dist, tf * range_max(vcap, lo, hi))
+        dist = np.minimum(dist, tf * range_max(env, lo, hi))
     lo = np.searchsorted(seg.s0[1:], bp[:-1] - dist, side="right")
     hi = np.searchsorted(seg.s0[:-1], bp[1:] + dist, side="left")
-    return range_min(seg.acap, lo, hi)
+    out: FloatArray = np.minimum(range_min(seg.acap, lo, hi), own)
+    return out
 
 
-def _short_peaks(ph: Phases, tf: float) -> FloatArray:
-    """Point caps ``(x, v)`` for every ``+A -> -A`` flip with less than ``tf`` between."""
+def _envelope(bp: FloatArray, vcap: FloatArray, acap: FloatArray, xcap: FloatArray) -> FloatArray:
+    """Largest speed within each interval of the TOPP profile under ``vcap``/``acap``."""
+    length = np.diff(bp)
+    x = boundary_speeds(length, vcap, acap, xcap)
+    peak2 = np.minimum(vcap * vcap, (2 * acap * length + x[:-1] + x[1:]) / 2)
+    out: FloatArray = np.sqrt(np.maximum(peak2, np.maximum(x[:-1], x[1:])))
+    return out
+
+
+def _with_cuts(grid: _Grid, cuts: FloatArray) -> _Grid:
+    """The grid refined at the cut ends, caps inherited, speed capped at each cut's level."""
+    bp = np.unique(np.concatenate([grid.bp, np.clip(cuts[:, :2].reshape(-1), grid.bp[0], grid.bp[-1])]))
+    parent = np.clip(np.searchsorted(grid.bp, (bp[:-1] + bp[1:]) / 2, side="right") - 1, 0, grid.vcap.size - 1)
+    level = _cover(bp, cuts[:, 0], cuts[:, 1], cuts[:, 2])
+    vcap = np.minimum(grid.vcap[parent], level)
+    limit = np.where(level < grid.vcap[parent], Limit.ACCEL, grid.limit[parent]).astype(np.int8)
+    return _Grid(bp, vcap, grid.acap[parent], limit, grid.pins)
+
+
+def _flips(ph: Phases, tf: float) -> tuple[np.ndarray, np.ndarray]:
+    """Phase pairs (first, second): ``+A`` then ``-A`` with less than ``tf`` of cruise between."""
     nz = np.flatnonzero(ph.a0 != 0.0)
     if nz.size < 2:
-        return np.zeros((0, 2))
+        return nz[:0], nz[:0]
     first, second = nz[:-1], nz[1:]
-    end_t = ph.t0[first] + ph.dur[first]
-    gap = ph.t0[second] - end_t
+    gap = ph.t0[second] - (ph.t0[first] + ph.dur[first])
     bad = (ph.a0[first] > 0) & (ph.a0[second] < 0) & (gap < tf * (1 - 1e-9))
-    if not bad.any():
-        return np.zeros((0, 2))
-    f, s, g = first[bad], second[bad], gap[bad]
-    tau = ph.dur[f]
-    v_pk = ph.v0[f] + ph.a0[f] * tau
-    x_end = ph.s0[f] + ph.v0[f] * tau + ph.a0[f] * tau**2 / 2
-    x_pk = x_end + v_pk * g / 2
-    acc = np.minimum(ph.a0[f], -ph.a0[s])
-    v_c = (-acc * tf + np.sqrt((acc * tf) ** 2 + 4 * v_pk**2)) / 2
-    return np.stack([x_pk, v_c * (1 - 1e-9)], axis=1)
+    return first[bad], second[bad]
+
+
+def peak_cuts(ph: Phases, tf: float) -> FloatArray:
+    """Rows ``(s_from, s_to, level)``: cut every short speed peak flat at ``level``.
+
+    A ``+A -> -A`` flip with less than ``tf`` of cruise between would make the filter's
+    jerk ``2A / Tf``.  The fix is the time-optimal one among profiles that follow the
+    TOPP envelopes: the highest ``level`` at which the connected part of
+    ``{v >= level}`` around the peak is at least ``level * tf`` long, so that cutting
+    it flat leaves a cruise of ``tf``.  Cutting only lowers the profile (every cap stays
+    met), needs no other change (the cut profile is TOPP's under the extra cap) and
+    creates no new peak; ``level`` is found by a vectorised bisection, the part's ends by
+    binary lifting over a sparse table of per-phase minimum speeds: no global re-runs.
+    """
+    first, second = _flips(ph, tf)
+    if first.size == 0:
+        return np.zeros((0, 3))
+    v_end = ph.v0 + ph.a0 * ph.dur
+    pmin = np.minimum(ph.v0, v_end)
+    tables = _min_tables(pmin)
+    lo = np.zeros(first.size)
+    hi = v_end[first].copy()
+    for _ in range(44):
+        mid = (lo + hi) / 2
+        s_a, s_b = _component(ph, tables, first, second, mid)
+        ok = s_b - s_a >= mid * tf
+        lo = np.where(ok, mid, lo)
+        hi = np.where(ok, hi, mid)
+    level = np.maximum(lo * (1 - 1e-9), 1e-9 * hi)
+    s_a, s_b = _component(ph, tables, first, second, level)
+    return np.stack([s_a, s_b, level], axis=1)
+
+
+def _min_tables(values: FloatArray) -> list[FloatArray]:
+    tables = [values]
+    width = 1
+    while width * 2 <= values.size:
+        prev = tables[-1]
+        tables.append(np.minimum(prev[:-width], prev[width:]))
+        width *= 2
+    return tables
+
+
+def _component(ph: Phases, tables: list[FloatArray], first: np.ndarray, second: np.ndarray, level: FloatArray
+               ) -> tuple[FloatArray, FloatArray]:
+    """s-extent of the part of ``{v >= level}`` that contains each peak.
+
+    Left end: in the last phase ``q <= first`` whose minimum speed is below ``level``
+    (an accelerating phase); right end: in the first such phase ``r >= second``.
+    """
+    n = tables[0].size
+    in_l = tables[0][first] >= level
+    in_r = tables[0][second] >= level
+    pos_l, pos_r = first.copy(), second.copy()  # [pos_l, first] and [second, pos_r] are >= level
+    for k in range(len(tables) - 1, -1, -1):
+        w = 1 << k
+        tab = tables[k]
+        can = in_l & (pos_l - w >= 0)
+        step = can & (tab[np.where(can, pos_l - w, 0)] >= level)
+        pos_l = np.where(step, pos_l - w, pos_l)
+        can = in_r & (pos_r + w <= n - 1)
+        step = can & (tab[np.where(can, pos_r + 1, 0)] >= level)
+        pos_r = np.where(step, pos_r + w, pos_r)
+    left = np.clip(np.where(in_l, pos_l - 1, first), 0, n - 1)
+    right = np.clip(np.where(in_r, pos_r + 1, second), 0, n - 1)
+    l2 = level * level
+    a_l, a_r = ph.a0[left], ph.a0[right]
+    end_l = ph.s0[left] + ph.v0[left] * ph.dur[left] + a_l * ph.dur[left] ** 2 / 2
+    with np.errstate(divide="ignore", invalid="ignore"):
+        s_a = np.where(a_l > 0, ph.s0[left] + (l2 - ph.v0[left] ** 2) / (2 * a_l), end_l)
+        s_b = ph.s0[right] + np.where(a_r < 0, (ph.v0[right] ** 2 - l2) / (-2 * a_r), 0.0)
+    return s_a, s_b
 
 
 def _state(ph: Phases, cum_int: FloatArray, total_s: float, t: FloatArray
@@ -130,13 +252,47 @@ def _state(ph: Phases, cum_int: FloatArray, total_s: float, t: FloatArray
     return s, v, a, integ
 
 
+def merge_phases(ph: Phases) -> Phases:
+    """Join consecutive phases of equal acceleration, jerk and limit (the same polynomial)."""
+    n = ph.t0.size
+    if n < 2:
+        return ph
+    new = np.ones(n, bool)
+    new[1:] = (ph.a0[1:] != ph.a0[:-1]) | (ph.j[1:] != ph.j[:-1]) | (ph.limit[1:] != ph.limit[:-1])
+    if new.all():
+        return ph
+    start = np.flatnonzero(new)
+    end_t = np.append(ph.t0[start[1:]], ph.end_time)
+    return Phases(ph.t0[start], end_t - ph.t0[start], ph.s0[start], ph.v0[start], ph.a0[start], ph.j[start],
+                  ph.limit[start])
+
+
+def _snap(knots: FloatArray) -> FloatArray:
+    """Drop knots closer than :data:`KNOT_SNAP_S` to the previous kept one.
+
+    A knot ``t0 + Tf`` that coincides with a phase start up to rounding would make a
+    phase of ~1e-12 s whose mid-point samples the two sides of a flip inconsistently.
+    """
+    if knots.size < 2:
+        return knots
+    close = np.diff(knots) < KNOT_SNAP_S
+    if not close.any():
+        return knots
+    # keep a knot unless it is within the snap distance of the last *kept* knot: group
+    # runs of close knots and keep the first of each run (runs are short in practice)
+    keep = np.ones(knots.size, bool)
+    keep[1:] = ~close
+    out: FloatArray = knots[keep]
+    return out
+
+
 def _filter(ph: Phases, tf: float, total_s: float) -> Phases:
     d, v0, a = ph.dur, ph.v0, ph.a0
     piece = ph.s0 * d + v0 * d**2 / 2 + a * d**3 / 6
     cum_int = np.concatenate([[0.0], np.cumsum(piece)])
     end = ph.end_time
-    knots = np.unique(np.concatenate([ph.t0, ph.t0 + tf, [end, end + tf]]))
-    knots = knots[knots < end + tf - 1e-13]
+    knots = _snap(np.unique(np.concatenate([ph.t0, ph.t0 + tf, [end, end + tf]])))
+    knots = knots[knots < end + tf - KNOT_SNAP_S]
     dur = np.diff(np.concatenate([knots, [end + tf]]))
     s1, v1, _a1, i1 = _state(ph, cum_int, total_s, knots)
     s2, v2, _a2, i2 = _state(ph, cum_int, total_s, knots - tf)

@@ -43,6 +43,7 @@ class PathRun:
     tol_mm: FloatArray  # (k,) blend tolerance of the piece's command
     arc_vertex: np.ndarray  # (k+1,) bool, vertex strictly inside one arc
     stop_cmd: int = -1  # command whose stop ends the run (for reports)
+    origin: np.ndarray | None = None  # (k+1,) index of the unrounded point each point comes from
 
 
 @dataclass
@@ -57,35 +58,46 @@ Run = PathRun | IndependentRapid
 
 @dataclass
 class _Builder:
-    points: list[FloatArray] = field(default_factory=list)  # chunks, each (q, 6) without its start
-    start: FloatArray | None = None
-    cmd: list[np.ndarray] = field(default_factory=list)
-    rapid: list[np.ndarray] = field(default_factory=list)
-    feed: list[FloatArray] = field(default_factory=list)
-    tol: list[FloatArray] = field(default_factory=list)
-    arcv: list[np.ndarray] = field(default_factory=list)  # per chunk: flags of its end points
+    """Collects the pieces of a run in plain lists (one row per piece end point)."""
 
-    def add(self, start: FloatArray, pts: FloatArray, cmd: int, rapid: bool, feed: float, tol: float) -> None:
+    start: tuple[float, ...] | None = None
+    points: list[tuple[float, ...]] = field(default_factory=list)
+    cmd: list[int] = field(default_factory=list)
+    rapid: list[bool] = field(default_factory=list)
+    feed: list[float] = field(default_factory=list)
+    tol: list[float] = field(default_factory=list)
+    arcv: list[bool] = field(default_factory=list)  # the piece's end point is inside an arc
+
+    def add_line(self, start: tuple[float, ...], end: tuple[float, ...], cmd: int, rapid: bool, feed: float,
+                 tol: float) -> None:
+        if self.start is None:
+            self.start = start
+        self.points.append(end)
+        self.cmd.append(cmd)
+        self.rapid.append(rapid)
+        self.feed.append(feed)
+        self.tol.append(tol)
+        self.arcv.append(False)
+
+    def add_arc(self, start: tuple[float, ...], pts: FloatArray, cmd: int, feed: float, tol: float) -> None:
         if self.start is None:
             self.start = start
         q = pts.shape[0]
-        self.points.append(pts)
-        self.cmd.append(np.full(q, cmd, dtype=np.int64))
-        self.rapid.append(np.full(q, rapid))
-        self.feed.append(np.full(q, feed))
-        self.tol.append(np.full(q, tol))
-        flags = np.zeros(q, dtype=bool)
-        flags[:-1] = True
-        self.arcv.append(flags)
+        self.points.extend(map(tuple, pts.tolist()))
+        self.cmd.extend([cmd] * q)
+        self.rapid.extend([False] * q)
+        self.feed.extend([feed] * q)
+        self.tol.extend([tol] * q)
+        self.arcv.extend([True] * (q - 1) + [False])
 
     def finish(self) -> PathRun | None:
         if self.start is None:
             return None
-        pts = np.vstack([self.start[None, :], *self.points])
-        arcv = np.concatenate([[False], *self.arcv])
+        pts = np.array([self.start, *self.points], dtype=float)
+        arcv = np.array([False, *self.arcv], dtype=bool)
         arcv[-1] = False
-        return PathRun(pts, np.concatenate(self.cmd), np.concatenate(self.rapid), np.concatenate(self.feed),
-                       np.concatenate(self.tol), arcv)
+        return PathRun(pts, np.array(self.cmd, dtype=np.int64), np.array(self.rapid, dtype=bool),
+                       np.array(self.feed, dtype=float), np.array(self.tol, dtype=float), arcv)
 
 
 def build_runs(cmds: Sequence[Command], machine: MachineModel, limits: AxisLimits, level: int,
@@ -122,22 +134,18 @@ def build_runs(cmds: Sequence[Command], machine: MachineModel, limits: AxisLimit
 
 def _add_motion(b: _Builder, cmd: Rapid | Linear | Arc, index: int, machine: MachineModel, limits: AxisLimits,
                 level: int, sink: DiagnosticSink, warned: set[str]) -> None:
-    start = np.array(cmd.start, float)
     tol = cmd.motion.blend_tolerance_mm
     tol_mm = machine.blend_tolerance_mm if tol is None else max(tol, 0.0)
     if isinstance(cmd, Rapid):
-        feed = math.inf
-    else:
-        feed = _feed_mm_s(cmd, machine, sink, warned)
-    if isinstance(cmd, Arc):
-        chord_max = math.inf
-        if level >= 2:
-            chord_max = _arc_chord_max(cmd, feed, machine, limits)
-        sag = min(machine.arc_tolerance_mm, tol_mm) if tol_mm > 0 else machine.arc_tolerance_mm
-        pts = arc_points(cmd, sag, chord_max)[1:]
-    else:
-        pts = np.array(cmd.end, float)[None, :]
-    b.add(start, pts, index, isinstance(cmd, Rapid), feed, tol_mm)
+        b.add_line(cmd.start, cmd.end, index, True, math.inf, tol_mm)
+        return
+    feed = _feed_mm_s(cmd, machine, sink, warned)
+    if isinstance(cmd, Linear):
+        b.add_line(cmd.start, cmd.end, index, False, feed, tol_mm)
+        return
+    chord_max = _arc_chord_max(cmd, feed, machine, limits) if level >= 2 else math.inf
+    sag = min(machine.arc_tolerance_mm, tol_mm) if tol_mm > 0 else machine.arc_tolerance_mm
+    b.add_arc(cmd.start, arc_points(cmd, sag, chord_max)[1:], index, feed, tol_mm)
 
 
 def _feed_mm_s(cmd: Linear | Arc, machine: MachineModel, sink: DiagnosticSink, warned: set[str]) -> float:

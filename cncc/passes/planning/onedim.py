@@ -8,6 +8,8 @@ the nominal one is a single constant-speed phase.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from cncc.ir.trajectory import FloatArray, Limit
@@ -20,11 +22,13 @@ def empty_phases() -> Phases:
     return Phases(z, z, z, z, z, z, np.zeros(0, dtype=np.int8))
 
 
-def ruckig_move(distance: float, v_max: float, a_max: float, j_max: float, limit: int) -> Phases:
-    """Time-optimal jerk-limited rest-to-rest move of ``distance`` >= 0."""
+def ruckig_move(distance: float, v_max: float, a_max: float, j_max: float, limit: int) -> Phases | None:
+    """Time-optimal jerk-limited rest-to-rest move of ``distance`` >= 0 (None if ruckig fails)."""
     if distance <= 1e-12:
         return empty_phases()
-    from ruckig import InputParameter, Result, Ruckig, Trajectory
+    if not all(math.isfinite(x) and x > 0 for x in (distance, v_max, a_max, j_max)):
+        return None
+    from ruckig import InputParameter, Result, Ruckig, RuckigError, Trajectory
 
     inp = InputParameter(1)
     inp.current_position = [0.0]
@@ -33,9 +37,12 @@ def ruckig_move(distance: float, v_max: float, a_max: float, j_max: float, limit
     inp.max_acceleration = [a_max]
     inp.max_jerk = [j_max]
     traj = Trajectory(1)
-    result = Ruckig(1).calculate(inp, traj)
-    if result not in (Result.Working, Result.Finished):  # pragma: no cover - ruckig failure is a bug
-        raise RuntimeError(f"ruckig failed: {result}")
+    try:
+        result = Ruckig(1).calculate(inp, traj)
+    except RuckigError:
+        return None
+    if result not in (Result.Working, Result.Finished):
+        return None
     prof = traj.profiles[0][0]
     dur = np.array(prof.t, float)
     keep = dur > 1e-13
@@ -77,6 +84,21 @@ def independent_axes(start: FloatArray, end: FloatArray, level: int, rapid: Floa
         elif level == 1:
             ph = trapezoid_move(dist, float(rapid[i]), float(accel[i]), float(take_off[i]), int(Limit.RAPID))
         else:
-            ph = ruckig_move(dist, float(rapid[i]), float(accel[i]), float(jerk[i]), int(Limit.RAPID))
+            ph = jerk_limited_move(dist, float(rapid[i]), float(accel[i]), float(jerk[i]), int(Limit.RAPID))
         out.append(axis_profile(ph, float(start[i]), sign))
     return out
+
+
+def jerk_limited_move(distance: float, v_max: float, a_max: float, j_max: float, limit: int) -> Phases:
+    """ruckig's time-optimal move, or (should ruckig fail) the 7-phase filtered S-curve."""
+    ph = ruckig_move(distance, v_max, a_max, j_max, limit)
+    if ph is not None:
+        return ph
+    from cncc.passes.planning.fir import fir_profile
+    from cncc.passes.planning.segments import Segments
+
+    one, u = np.ones(1), np.zeros((1, 6))
+    u[0, 0] = 1.0
+    seg = Segments(np.zeros((1, 6)), u, one * distance, np.array([0.0, distance]), np.zeros(1, np.int64),
+                   one * v_max, np.array([limit], np.int8), one * a_max, one * j_max, np.zeros(2))
+    return fir_profile(seg)

@@ -34,7 +34,8 @@ def _range_reduce(values: FloatArray, lo: np.ndarray, hi: np.ndarray, op: np.ufu
         return out
     tables = [values.astype(float)]
     width = 1
-    while width * 2 <= n:
+    longest = int((hi - lo).max()) if lo.size else 0
+    while width * 2 <= min(n, longest):
         prev = tables[-1]
         tables.append(op(prev[:-width], prev[width:]))
         width *= 2
@@ -52,13 +53,18 @@ def _range_reduce(values: FloatArray, lo: np.ndarray, hi: np.ndarray, op: np.ufu
 
 
 def cover_min(n: int, lo: np.ndarray, hi: np.ndarray, vals: FloatArray) -> FloatArray:
-    """Min over covering ranges for each of ``n`` positions."""
+    """Min over covering ranges for each of ``n`` positions.
+
+    ``vals`` is ``(q,)`` or ``(q, m)`` (``m`` independent columns); the result ``(n,)`` or
+    ``(n, m)``.  Only levels up to the longest range are built.
+    """
     lo = np.clip(lo, 0, n)
     hi = np.clip(hi, 0, n)
     ok = hi > lo
     lo, hi, vals = lo[ok], hi[ok], vals[ok]
-    levels = _levels(n)
-    tables = [np.full(n, np.inf) for _ in range(levels)]
+    levels = _levels(min(n, int((hi - lo).max()) if lo.size else 1))
+    shape = (n, *vals.shape[1:])
+    tables = [np.full(shape, np.inf) for _ in range(levels)]
     if lo.size:
         length = hi - lo
         k = np.floor(np.log2(length)).astype(np.int64)
@@ -71,5 +77,5 @@ def cover_min(n: int, lo: np.ndarray, hi: np.ndarray, vals: FloatArray) -> Float
         half = 1 << (level - 1)
         tab, below = tables[level], tables[level - 1]
         np.minimum(below, tab, out=below)
-        below[half:] = np.minimum(below[half:], tab[:-half] if half > 0 else tab)
+        below[half:] = np.minimum(below[half:], tab[:-half])
     return tables[0]

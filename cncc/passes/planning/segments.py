@@ -37,6 +37,7 @@ class Segments:
     acap: FloatArray  # (k,) mm/s^2
     jcap: FloatArray  # (k,) mm/s^3
     vvert: FloatArray  # (k+1,)
+    vorigin: np.ndarray | None = None  # (k+1,) unrounded run point of each vertex
 
     @property
     def count(self) -> int:
@@ -69,8 +70,10 @@ def make_segments(run: PathRun, limits: AxisLimits, machine: MachineModel) -> Se
     s0 = np.concatenate([[0.0], np.cumsum(length)])
     vvert = np.full(idx.size + 1, np.inf)
     vvert[0] = vvert[-1] = 0.0
+    vpoint = np.concatenate([idx, idx[-1:] + 1])
+    vorigin = vpoint if run.origin is None else run.origin[vpoint]
     return Segments(p0, u, length, s0, run.cmd[idx], vcap, vlim.astype(np.int8),
-                    path_limit(limits.amax_mm_s2, u), path_limit(limits.jmax_mm_s3, u), vvert)
+                    path_limit(limits.amax_mm_s2, u), path_limit(limits.jmax_mm_s3, u), vvert, vorigin)
 
 
 def junction_deviation(seg: Segments, limits: AxisLimits, deviation_mm: float) -> FloatArray:
@@ -127,5 +130,18 @@ def split_at_stops(seg: Segments) -> list[Segments]:
         vv[0] = vv[-1] = 0.0
         parts.append(replace(seg, p0=seg.p0[a:b], u=seg.u[a:b], length=seg.length[a:b],
                              s0=seg.s0[a:b + 1] - seg.s0[a], cmd=seg.cmd[a:b], vcap=seg.vcap[a:b],
-                             vlim=seg.vlim[a:b], acap=seg.acap[a:b], jcap=seg.jcap[a:b], vvert=vv))
+                             vlim=seg.vlim[a:b], acap=seg.acap[a:b], jcap=seg.jcap[a:b], vvert=vv,
+                             vorigin=None if seg.vorigin is None else seg.vorigin[a:b + 1]))
     return parts
+
+
+def piece_caps(run: PathRun, pieces: np.ndarray, limits: AxisLimits, machine: MachineModel
+               ) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
+    """Length and speed, acceleration, jerk caps of single pieces of ``run`` (as make_segments)."""
+    d = run.points[pieces + 1] - run.points[pieces]
+    length = np.linalg.norm(d, axis=1)
+    u = d / np.maximum(length, 1e-300)[:, None]
+    feed = np.minimum(run.feed_mm_s[pieces], machine.max_feed_mm_min / 60.0)
+    vcap = np.where(run.rapid[pieces], path_limit(limits.rapid_mm_s, u),
+                    np.minimum(feed, path_limit(limits.vmax_mm_s, u)))
+    return length, vcap, path_limit(limits.amax_mm_s2, u), path_limit(limits.jmax_mm_s3, u)

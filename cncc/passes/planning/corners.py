@@ -1,0 +1,193 @@
+"""-O2/-O3 on blending machines: round every corner, or stop where stopping is faster.
+
+Consumes a :class:`PathRun`; produces the run's parts (rest to rest) as
+``(Segments, Phases)`` pairs, each profiled by the caller's ``profile`` function.
+
+A rounded corner that is nearly a stop (a sharp corner within a small tolerance) can
+cost more than a real stop: the velocity-step rule takes acceleration from the chords
+of the blend, and the jerk filter's window carries that smaller acceleration into the
+braking before the corner, while a stop lets ruckig brake and start with the full
+limits.  So, per corner:
+
+1. *candidates*: corners between two straight commands whose rounded speed (the
+   centripetal speed of the blend arc, an upper bound of what the velocity-step rule
+   leaves) is below :data:`SLOW_CORNER` times the neighbouring speed caps;
+2. for every candidate, the two commands around it are planned from rest to rest with
+   the corner rounded — all candidates at once, as one chain of independent windows
+   (one TOPP, no filter: a filtered part lasts its unfiltered time plus ``Tf``);
+3. the corner stops when the two commands' rest-to-rest ruckig times (what a stop
+   costs when the neighbouring corners stop too) are shorter;
+4. the run is planned once, with those stops.
+
+Both sides of the comparison start and end at rest, so the estimate isolates the
+corner; it is exact for polygons whose corners all stop and a close estimate where a
+neighbour is rounded.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+import numpy as np
+
+from cncc.ir.machine import MachineModel
+from cncc.ir.trajectory import FloatArray
+from cncc.passes.planning.geometry import NORMAL_SHARE, PathRun
+from cncc.passes.planning.limits import AxisLimits, path_limit
+from cncc.passes.planning.profile import Phases
+from cncc.passes.planning.segments import Segments
+
+SLOW_CORNER = 0.7
+"""A corner whose blend-arc speed is below this share of the neighbouring caps may stop."""
+
+Part = tuple[Segments, Phases]
+
+
+def plan_blended(run: PathRun, machine: MachineModel, limits: AxisLimits,
+                 profile: Callable[[Segments], Phases]) -> list[Part]:
+    cand = candidates(run, limits, machine)
+    stop = faster_stops(run, cand, limits, machine) if cand.any() else None
+    return [(part, profile(part)) for part in rounded_parts(run, stop, machine, limits)]
+
+
+def rounded_parts(run: PathRun, stop: np.ndarray | None, machine: MachineModel, limits: AxisLimits
+                  ) -> list[Segments]:
+    """The run rounded except at ``stop`` (``(k+1,)`` bool), cut into parts at rest."""
+    from cncc.passes.planning.blending import round_corners, velocity_step_caps
+    from cncc.passes.planning.segments import make_segments, split_at_stops
+
+    if stop is not None and not stop.any():
+        stop = None
+    seg = make_segments(round_corners(run, limits, machine, stop), limits, machine)
+    if seg is None:
+        return []
+    if seg.count >= 2:
+        caps = velocity_step_caps(seg, limits, machine.interpolation_period_s)
+        if stop is not None and seg.vorigin is not None:
+            caps = np.where(stop[seg.vorigin[1:-1]], 0.0, caps)
+        seg.vvert[1:-1] = np.minimum(seg.vvert[1:-1], caps)
+    return split_at_stops(seg)
+
+
+def candidates(run: PathRun, limits: AxisLimits, machine: MachineModel) -> np.ndarray:
+    """Interior points of the (unrounded) run that may become stops, ``(k+1,)`` bool."""
+    from cncc.passes.planning.segments import piece_caps
+
+    k = run.cmd.size
+    cand = np.zeros(k + 1, bool)
+    if k < 2:
+        return cand
+    base = run.cmd - run.cmd.min()
+    single = np.bincount(base)[base] == 1  # the piece is its whole command (a line)
+    v = 1 + np.flatnonzero((run.cmd[:-1] != run.cmd[1:]) & single[:-1] & single[1:] & ~run.arc_vertex[1:-1])
+    if v.size == 0:
+        return cand
+    len_in, v_in, _, _ = piece_caps(run, v - 1, limits, machine)
+    len_out, v_out, _, _ = piece_caps(run, v, limits, machine)
+    u_in = (run.points[v] - run.points[v - 1]) / np.maximum(len_in, 1e-300)[:, None]
+    u_out = (run.points[v + 1] - run.points[v]) / np.maximum(len_out, 1e-300)[:, None]
+    cos_t = np.clip(np.einsum("ij,ij->i", u_in, u_out), -1.0, 1.0)
+    half = np.arccos(cos_t) / 2
+    tol = run.tol_mm[v - 1]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        d_tol = tol * np.tan(half) / (1.0 / np.cos(half) - 1.0)
+        d_t = np.minimum.reduce([np.nan_to_num(d_tol, nan=0.0, posinf=np.inf), len_in / 2, len_out / 2])
+        radius = np.nan_to_num(d_t / np.tan(half), nan=np.inf, posinf=np.inf)
+    e2 = u_out - cos_t[:, None] * u_in
+    e2 /= np.maximum(np.linalg.norm(e2, axis=1), 1e-300)[:, None]
+    a_min = path_limit(limits.amax_mm_s2, np.abs(u_in) + np.abs(e2))
+    v_arc = np.sqrt(NORMAL_SHARE * a_min * radius)
+    v_arc = np.where(half > np.pi / 2 - 5e-4, 0.0, v_arc)  # a reversal is never rounded
+    turning = half > 5e-4
+    cand[v] = turning & (len_in > 1e-9) & (len_out > 1e-9) & (v_arc < SLOW_CORNER * np.minimum(v_in, v_out))
+    return cand
+
+
+def faster_stops(run: PathRun, cand: np.ndarray, limits: AxisLimits, machine: MachineModel) -> np.ndarray:
+    """The candidates where stopping beats rounding (see the module docstring)."""
+    from cncc.passes.planning.segments import piece_caps
+
+    k = run.cmd.size
+    v = np.flatnonzero(cand)
+    rest = np.full(k, np.nan)  # ruckig rest-to-rest time of the pieces next to candidates
+    pieces = np.unique(np.concatenate([v - 1, v]))
+    rest[pieces] = _rest_times(*piece_caps(run, pieces, limits, machine))
+    pair = rest[v - 1] + rest[v] < _window_times(run, v - 1, v + 1, limits, machine) * (1 - 1e-9)
+    v = v[pair]
+    if v.size == 0:
+        return np.zeros_like(cand)
+    # blocks of consecutive stops; each is kept only if it beats rounding the whole block
+    brk = np.flatnonzero(np.diff(v) != 1)
+    first = v[np.concatenate([[0], brk + 1])]
+    last = v[np.concatenate([brk, [v.size - 1]])]
+    lo, hi = first - 1, last + 1  # pieces [lo, hi) around each block
+    open_lo, open_hi = lo > 0, hi < k  # boundary piece inside a rounded part (else at a run end)
+    singles = np.concatenate([lo[open_lo], hi[open_hi] - 1])
+    t = _window_times(run, np.concatenate([lo, singles]), np.concatenate([hi, singles + 1]), limits, machine)
+    t_round, t_single = t[:lo.size], t[lo.size:]
+    t_edge = np.zeros(lo.size)
+    t_edge[open_lo] += t_single[:int(open_lo.sum())]
+    t_edge[open_hi] += t_single[int(open_lo.sum()):]
+    inner = np.concatenate([[0.0], np.cumsum(np.nan_to_num(rest))])  # prefix sums of ruckig times
+    t_stop = t_edge + (inner[np.where(open_hi, hi - 1, hi)] - inner[np.where(open_lo, lo + 1, lo)])
+    keep = t_stop < t_round * (1 - 1e-9)
+    stop = np.zeros_like(cand)
+    for a, b in zip(first[keep].tolist(), last[keep].tolist(), strict=True):
+        stop[a:b + 1] = True
+    return stop
+
+
+def _window_times(run: PathRun, lo: np.ndarray, hi: np.ndarray, limits: AxisLimits, machine: MachineModel
+                  ) -> FloatArray:
+    """Rest-to-rest -O2 time of the pieces ``[lo, hi)`` of each window, inner corners rounded.
+
+    All windows are planned at once: chained end to end (translated) with a stop at each
+    junction, one unfiltered TOPP; a part from rest to rest lasts that time plus ``Tf``.
+    """
+    from cncc.passes.planning.blending import reduce_accel
+    from cncc.passes.planning.fir import unfiltered_profile
+
+    m = lo.size
+    count = hi - lo
+    piece = np.repeat(lo - np.concatenate([[0], np.cumsum(count)[:-1]]), count) + np.arange(int(count.sum()))
+    d = run.points[piece + 1] - run.points[piece]
+    pts = np.vstack([np.zeros((1, 6)), np.cumsum(d, axis=0)])
+    junction = np.zeros(piece.size + 1, bool)
+    junction[np.cumsum(count)] = True
+    chain = PathRun(pts, run.cmd[piece], run.rapid[piece], run.feed_mm_s[piece], run.tol_mm[piece],
+                    np.zeros(piece.size + 1, bool))
+    seg = _joined(chain, junction, machine, limits)
+    seg.acap = reduce_accel(seg, limits, machine.interpolation_period_s)
+    ph, tf = unfiltered_profile(seg)
+    assert seg.vorigin is not None
+    ends = seg.s0[np.flatnonzero(junction[seg.vorigin])]  # the end of each window
+    s_mid = ph.s0 + ph.v0 * ph.dur / 2 + ph.a0 * ph.dur**2 / 8
+    owner = np.minimum(np.searchsorted(ends[:-1], s_mid, side="right"), m - 1)
+    out: FloatArray = np.bincount(owner, weights=ph.dur, minlength=m).astype(float) + tf
+    return out
+
+
+def _joined(run: PathRun, stop: np.ndarray, machine: MachineModel, limits: AxisLimits) -> Segments:
+    """Like :func:`rounded_parts` but one Segments with zero caps at the stops (not cut)."""
+    from cncc.passes.planning.blending import round_corners, velocity_step_caps
+    from cncc.passes.planning.segments import make_segments
+
+    seg = make_segments(round_corners(run, limits, machine, stop), limits, machine)
+    assert seg is not None and seg.vorigin is not None
+    caps = velocity_step_caps(seg, limits, machine.interpolation_period_s)
+    seg.vvert[1:-1] = np.minimum(seg.vvert[1:-1], np.where(stop[seg.vorigin[1:-1]], 0.0, caps))
+    return seg
+
+
+def _rest_times(length: FloatArray, vcap: FloatArray, acap: FloatArray, jcap: FloatArray) -> list[float]:
+    """ruckig's rest-to-rest time per piece (cached: CAM paths repeat their pieces)."""
+    from cncc.ir.trajectory import Limit
+    from cncc.passes.planning.onedim import jerk_limited_move
+
+    cache: dict[tuple[float, float, float, float], float] = {}
+    out = []
+    for key in zip(length.tolist(), vcap.tolist(), acap.tolist(), jcap.tolist(), strict=True):
+        if key not in cache:
+            cache[key] = jerk_limited_move(*key, int(Limit.FEED)).end_time
+        out.append(cache[key])
+    return out
