@@ -33,3 +33,10 @@ def test_cli_start_is_light() -> None:
     p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
     assert p.returncode == 0, p.stderr
     assert p.stdout.strip() == ""
+
+
+@pytest.mark.skipif(shutil.which("mypy") is None, reason="mypy not installed")
+def test_mypy_strict() -> None:
+    """The whole package type-checks under ``mypy --strict`` (configured in pyproject.toml)."""
+    p = subprocess.run(["mypy"], cwd=ROOT, capture_output=True, text=True, timeout=900)
+    assert p.returncode == 0, p.stdout[-3000:]

@@ -14,7 +14,7 @@ import re
 from collections.abc import Iterator
 from dataclasses import dataclass
 from importlib import resources
-from typing import Any
+from typing import Any, cast
 
 from lark import Lark, Token, Transformer
 from lark.exceptions import LarkError, UnexpectedCharacters, UnexpectedEOF, UnexpectedInput
@@ -24,6 +24,7 @@ from cncc.diagnostics import DiagnosticSink
 from cncc.dialects import Dialect
 from cncc.frontend import syntax as sx
 from cncc.frontend.linuxcnc.builder import LinuxcncBuilder
+from cncc.frontend.series8.builder import Series8Builder
 from cncc.frontend.szgh_builder import SzghBuilder
 from cncc.source import SourceFile, Span
 
@@ -57,7 +58,7 @@ def grammar_text(family: str, comments: tuple[str, ...], block_end: str) -> str:
     return "\n".join(out) + "\n"
 
 
-class _Builder(SzghBuilder, LinuxcncBuilder, Transformer[Token, Any]):
+class _Builder(SzghBuilder, LinuxcncBuilder, Series8Builder, Transformer[Token, Any]):
     """Builds syntax nodes with absolute offsets (``base`` is the line's offset)."""
 
     def __init__(self) -> None:
@@ -96,8 +97,8 @@ class _Builder(SzghBuilder, LinuxcncBuilder, Transformer[Token, Any]):
             sign, expr = items
             if sign == "-":
                 return sx.Neg(expr, self.base + (sign.start_pos or 0), _end(expr))
-            return expr
-        return items[0]  # type: ignore[no-any-return]
+            return cast(sx.Expr, expr)
+        return cast(sx.Expr, items[0])
 
     def word(self, items: list[Any]) -> sx.Word:
         letter_tok, value = items
@@ -303,7 +304,7 @@ class Parser:
         stripped = line.rstrip("\r")
         trailing: sx.CommentItem | None = None
         try:
-            parts = parser.parse(stripped)
+            parts = cast(list[Any], parser.parse(stripped))
         except UnexpectedInput as exc:
             recovered = self._recover_after_block_end(parser, builder, stripped, base, exc)
             if recovered is None:
@@ -334,7 +335,7 @@ class Parser:
         if cut < 0:
             return None
         try:
-            parts = parser.parse(line[:cut])
+            parts = cast(list[Any], parser.parse(line[:cut]))
         except LarkError:
             return None
         rest = line[cut + 1:]
