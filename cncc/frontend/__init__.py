@@ -14,6 +14,7 @@ from cncc.dialects import Dialect
 from cncc.frontend.fastpath import is_straight_line, lower_straight
 from cncc.frontend.interp import InterpOptions, Interpreter
 from cncc.frontend.macro import MacroOptions, needs_executor, run_program
+from cncc.frontend.macro.remap import remaps_cycles
 from cncc.frontend.parser import ParseOptions, Parser
 from cncc.ir import Command
 from cncc.source import SourceFile
@@ -34,7 +35,7 @@ def lower(src: SourceFile, dialect: Dialect, sink: DiagnosticSink,
         from cncc.frontend.dialect_front import lower_checked
 
         return lower_checked(src, dialect, sink, opts, macro)
-    if is_straight_line(src.text, dialect):
+    if is_straight_line(src.text, dialect) and not remaps_cycles(dialect):
         return lower_straight(src, dialect, sink, opts)
     if needs_executor(src.text, dialect):
         return run_program(src, dialect, sink, opts, macro)

@@ -28,7 +28,7 @@ from __future__ import annotations
 
 import weakref
 from dataclasses import dataclass, replace
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from cncc import diagnostics as dg
 from cncc.dialects import CodeDef
@@ -272,7 +272,7 @@ def emit_cycle(it: Interpreter, ctx: BlockContext, d: CycleData, holes: tuple[Ve
         return_initial=it.modal.cycle_return_initial, peck_mm=peck, clearance_mm=_clearance(it, d.kind),
         peck_tap_to_r=option(it, "cycle_peck_tap", "return_r") == "return_r", shift_mm=shift,
         dwell_s=d.dwell_s, spindle=spindle, spindle_rpm=rpm, tap_pitch_mm=pitch, repeat=repeat,
-        pattern=pattern, motion=ops.block_motion(it, ctx)))
+        pattern=pattern, motion=ops.block_motion(it, ctx), **_lift_pause(it, d.kind)))
     it.pos = placed[-1]
 
 
@@ -292,6 +292,15 @@ def retract_level(it: Interpreter, d: CycleData) -> float:
     if option(it, "cycle_return_higher", False) and d.r_mm > d.initial_mm:
         return d.r_mm
     return d.initial_mm
+
+
+def _lift_pause(it: Interpreter, kind: CycleKind) -> dict[str, Any]:
+    """SZGH User P8 (option ``cycle_peck_pause_ms``): |ms| > 5 pauses before each G73/G83
+    peck lift; a negative value makes the lift a feed move."""
+    ms = float(option(it, "cycle_peck_pause_ms", 0.0))  # type: ignore[arg-type]
+    if kind not in (CycleKind.PECK, CycleKind.PECK_HIGH_SPEED) or abs(ms) <= 5.0:
+        return {}
+    return {"lift_pause_s": abs(ms) / 1000.0, "lift_at_feed": ms < 0}
 
 
 def _clearance(it: Interpreter, kind: CycleKind) -> float:

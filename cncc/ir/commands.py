@@ -268,6 +268,8 @@ class Cycle:
     repeat: int = 1  # K (SYNTEC) / L (SZGH) as programmed
     pattern: str = ""  # the hole-pattern code (G134 ...) that produced the holes
     motion: Motion = DEFAULT_MOTION
+    lift_pause_s: float = 0.0  # G73/G83: dwell before each peck lift (SZGH User P8)
+    lift_at_feed: bool = False  # G73/G83: peck lifts at feed instead of rapid (User P8 < 0)
 
     @property
     def plane(self) -> Plane:

@@ -110,6 +110,12 @@ class _Path:
             self.out.append(Linear(c.span, c.frame, self.pos, p, c.feed_mm_min, self.motion, c.code))
             self.pos = p
 
+    def lift(self, p: Vec6) -> None:
+        """A G73/G83 peck lift: the User P8 pause first, then a rapid (or a feed)."""
+        if self.c.lift_pause_s > 0:
+            self.out.append(Dwell(self.c.span, self.c.frame, self.c.lift_pause_s))
+        (self.feed if self.c.lift_at_feed else self.rapid)(p)
+
     def dwell(self) -> None:
         if self.c.dwell_s > 0:
             self.out.append(Dwell(self.c.span, self.c.frame, self.c.dwell_s))
@@ -143,7 +149,7 @@ def _peck_high_speed(p: _Path) -> None:
     depths = peck_depths(c.r_mm, c.bottom_mm, c.peck_mm)
     for b in depths[:-1]:
         p.feed(p.at(b))
-        p.rapid(p.at(b - p.down * c.clearance_mm))
+        p.lift(p.at(b - p.down * c.clearance_mm))
     p.feed(p.at(c.bottom_mm))
     p.rapid(p.at(c.retract_mm))
 
@@ -154,7 +160,7 @@ def _peck(p: _Path) -> None:
     depths = peck_depths(c.r_mm, c.bottom_mm, c.peck_mm)
     for k, b in enumerate(depths):
         if k:
-            p.rapid(p.at(c.r_mm))
+            p.lift(p.at(c.r_mm))
             back = depths[k - 1] - p.down * c.clearance_mm
             p.rapid(p.at(back if (back - c.r_mm) * p.down > 0 else c.r_mm))
         p.feed(p.at(b))

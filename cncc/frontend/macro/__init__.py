@@ -16,6 +16,7 @@ from cncc.diagnostics import DiagnosticSink
 from cncc.dialects import Dialect
 from cncc.frontend.interp import InterpOptions, Interpreter
 from cncc.frontend.macro.executor import EXEC_OPS, Executor, MacroOptions
+from cncc.frontend.macro.remap import remaps_cycles
 from cncc.frontend.parser import ParseOptions, Parser
 from cncc.frontend.syntax import Block
 from cncc.ir import Command
@@ -46,6 +47,8 @@ def needs_executor(text: str, dialect: Dialect) -> bool:
     """Whether ``text`` uses macro statements, calls, jumps or loops."""
     if dialect.macro_flavour not in MACRO_FLAVOURS:
         return False
+    if remaps_cycles(dialect):
+        return True  # User P500-P504: cycle codes call programs
     return _HINTS.search(text) is not None or _code_pattern(dialect).search(text) is not None
 
 
