@@ -25,12 +25,14 @@ from cncc.ir import Arc, Command, FeedRate, Linear, Plane
 from cncc.ir.fastnew import new_rapid, new_span
 from cncc.source import SourceFile, Span
 
-_NUM = r"([-+]?(?:\d+\.?\d*|\.\d+))"
+_NUM = r"([-+]?[\d.]+)"
 CAM_LINE = re.compile(
-    rf"(?:N\d+[ \t]*)?(?:G0*([0-3])(?![\d.])[ \t]*)?(?:X{_NUM}[ \t]*)?(?:Y{_NUM}[ \t]*)?(?:Z{_NUM}[ \t]*)?"
-    rf"(?:I{_NUM}[ \t]*)?(?:J{_NUM}[ \t]*)?(?:F((?:\d+\.?\d*|\.\d+))[ \t]*)?(;?)[ \t]*\r?"
+    rf"(?:N\d+ *)?(?:G0*([0-3]) *)?(?:X{_NUM} *)?(?:Y{_NUM} *)?(?:Z{_NUM} *)?(?:I{_NUM} *)?(?:J{_NUM} *)?"
+    rf"(?:F([\d.]+) *)?(;?) *\r?"
 )
-"""A plain motion block in canonical order; the numbers must end the word."""
+"""A plain motion block in canonical order.  The number pattern is loose on purpose
+(it is fast): a value that ``float()`` rejects (``1.2.3``, ``.``) sends the line to
+the general path, which reports it."""
 
 _MOTION_OF = {"0": "rapid", "1": "linear", "2": "arc_cw", "3": "arc_ccw"}
 _CODE_OF = {"rapid": "G00", "linear": "G01", "arc_cw": "G02", "arc_ccw": "G03"}
@@ -131,52 +133,57 @@ def lower_straight(src: SourceFile, dialect: Dialect, sink: DiagnosticSink, opts
                     and (motion == "linear" or motion == "rapid" if is_ is None and js is None
                          else (motion == "arc_cw" or motion == "arc_ccw") and zs is None
                          and frame.plane is Plane.XY)):
-                if motion != cur:
-                    cur = motion
-                    dirty = True
-                x, y, z = p[0], p[1], p[2]
-                if xs is not None:
-                    v = float(xs) * (k_pt if "." in xs else k_int)
-                    x = x + v if inc else v
-                if ys is not None:
-                    v = float(ys) * (k_pt if "." in ys else k_int)
-                    y = y + v if inc else v
-                if zs is not None:
-                    v = float(zs) * (k_pt if "." in zs else k_int)
-                    z = z + v if inc else v
-                q = (x, y, z, p[3], p[4], p[5])
-                if fs is not None:
-                    feed_prog = float(fs)
-                    feed_mm_min = feed_prog * k_pt
-                    dirty = True
-                    yield FeedRate(new_span(sid, m.start(7) - 1, m.end(7)), frame, feed_mm_min, False)
-                span = new(Span)
-                sp_id(span, sid)
-                sp_start(span, pos)
-                sp_end(span, end)
-                if motion == "linear":
-                    cmd = new(Linear)
-                    l_span(cmd, span)
-                    l_frame(cmd, frame)
-                    l_start(cmd, p)
-                    l_end(cmd, q)
-                    l_feed(cmd, feed_mm_min)
-                    l_motion(cmd, path)
-                    l_origin(cmd, "")
-                    yield cmd
-                elif motion == "rapid":
-                    yield new_rapid(span, frame, p, q, path)
-                else:
+                try:  # every number first: one that float() rejects sends the line to the general path
+                    x, y, z = p[0], p[1], p[2]
+                    if xs is not None:
+                        v = float(xs) * (k_pt if "." in xs else k_int)
+                        x = x + v if inc else v
+                    if ys is not None:
+                        v = float(ys) * (k_pt if "." in ys else k_int)
+                        y = y + v if inc else v
+                    if zs is not None:
+                        v = float(zs) * (k_pt if "." in zs else k_int)
+                        z = z + v if inc else v
+                    f_new = float(fs) if fs is not None else -1.0
                     ci, cj = p[0], p[1]
                     if is_ is not None:
                         ci += float(is_) * (k_pt if "." in is_ else k_int)
                     if js is not None:
                         cj += float(js) * (k_pt if "." in js else k_int)
-                    yield Arc(span, frame, p, q, (ci, cj, p[2], p[3], p[4], p[5]),
-                              -1 if motion == "arc_cw" else 1, Plane.XY, feed_mm_min, path)
-                p = q
-                pos = end + 1
-                continue
+                except ValueError:
+                    pass
+                else:
+                    if motion != cur:
+                        cur = motion
+                        dirty = True
+                    q = (x, y, z, p[3], p[4], p[5])
+                    if fs is not None:
+                        feed_prog = f_new
+                        feed_mm_min = f_new * k_pt
+                        dirty = True
+                        yield FeedRate(new_span(sid, m.start(7) - 1, m.end(7)), frame, feed_mm_min, False)
+                    span = new(Span)
+                    sp_id(span, sid)
+                    sp_start(span, pos)
+                    sp_end(span, end)
+                    if motion == "linear":
+                        cmd = new(Linear)
+                        l_span(cmd, span)
+                        l_frame(cmd, frame)
+                        l_start(cmd, p)
+                        l_end(cmd, q)
+                        l_feed(cmd, feed_mm_min)
+                        l_motion(cmd, path)
+                        l_origin(cmd, "")
+                        yield cmd
+                    elif motion == "rapid":
+                        yield new_rapid(span, frame, p, q, path)
+                    else:
+                        yield Arc(span, frame, p, q, (ci, cj, p[2], p[3], p[4], p[5]),
+                                  -1 if motion == "arc_cw" else 1, Plane.XY, feed_mm_min, path)
+                    p = q
+                    pos = end + 1
+                    continue
         if end > pos:
             it.pos = p
             if dirty:

@@ -52,8 +52,12 @@ def test_examples_agree() -> None:
 
 
 def test_regex_rejects_what_it_cannot_lower() -> None:
-    for line in ["G01 X1 Y2 Z3 A4", "G17 G01 X1", "X1 G01", "G01 X1 (c)", "G01 X1.2.3", "G1X-", "G04 X1"]:
+    for line in ["G01 X1 Y2 Z3 A4", "G17 G01 X1", "X1 G01", "G01 X1 (c)", "G1X-", "G04 X1", "G12 X1"]:
         assert CAM_LINE.fullmatch(line) is None, line
+    # the number pattern is loose; float() rejects these and the line takes the general path
+    for bad in ["G01 X1.2.3 F10", "G01 X. F10", "G01 X1 F1..", "G02 X1 Y1 I1.1.1 J0 F10", "G01 X80.793. F5"]:
+        (fast, d1), (slow, d2) = both(bad + "\n")
+        assert fast == slow and d1 == d2 and d1, bad
     for line in ["X1", "N10 G1 X1. Y-2 Z.5 F300", "G0 Z5.", "G01 X1;", "G02 X1 Y1 I1 J0 F10"]:
         assert CAM_LINE.fullmatch(line) is not None, line
 
