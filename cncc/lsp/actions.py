@@ -15,7 +15,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
-from cncc.dialects import Dialect
+from cncc.dialects import CodeDef, Dialect
 from cncc.ir import Arc, Command, Plane
 from cncc.lsp.positions import LineIndex
 from cncc.lsp.scan import Comments, code_part, tokens
@@ -100,15 +100,74 @@ def repair_arc(index: LineIndex, dialect: Dialect, arc: Arc) -> tuple[str, list[
     return f"Repair arc centre ({shown})", edits
 
 
+PREAMBLE_OPS = frozenset({"plane_xy", "plane_zx", "plane_yz", "metric", "inch", "absolute", "incremental",
+                          "feed_per_min", "feed_per_rev", "inverse_time"})
+"""Ops of the modes the G-code emitter states before a program (its preamble)."""
+
+
 def convert_selection(index: LineIndex, commands: Sequence[Command], first_line: int, last_line: int,
-                      target: Dialect) -> tuple[str, list[Edit]] | None:
-    """Replace whole lines ``first_line..last_line`` by their commands emitted for ``target``."""
+                      source: Dialect, target: Dialect) -> tuple[str, list[Edit]] | None:
+    """Replace whole lines ``first_line..last_line`` by their commands emitted for ``target``.
+
+    The emitter writes a whole program: ``%`` lines, and a preamble that states the plane,
+    units, distance and feed modes it then relies on.  Inside a document, only the preamble
+    codes whose mode differs from the one in force above the selection are kept (the emitter
+    writes absolute coordinates, so under G91 the selection starts with the target's G90),
+    and after the selection the target's codes restore the modes the document has in force
+    there (the selection's own G91, say)."""
     from cncc.backends.gcode import emit_gcode
+    from cncc.lsp.complete import modal_context
 
     lo = index.line_start(first_line)
     hi = index.line_end(last_line)
     chosen = [c for c in commands if lo <= c.span.start < hi or (c.span.start <= lo < c.span.end)]
     if not chosen:
         return None
-    text = "".join(emit_gcode(chosen, target)).rstrip("\n")
-    return f"Convert selection to {target.name} ({target.title})", [(lo, hi, text)]
+    lines = [ln.rstrip("\n") for ln in emit_gcode(chosen, target) if ln.strip() != "%"]
+    state = {g: c.op for g, c in modal_context(index, source, first_line).items()}
+    at = next((i for i, ln in enumerate(lines) if _mode_words(ln, target, only=True)), None)
+    if at is not None:
+        planes = {_PLANE_OPS[c.frame.plane] for c in chosen if c.frame.plane in _PLANE_OPS}
+        kept = [(w, c) for w, c in _mode_words(lines[at], target, only=True)
+                if state.get(c.group, c.op) != c.op and (c.group != "plane" or c.op in planes)]
+        lines[at:at + 1] = [" ".join(w for w, _ in kept)] if kept else []
+    for ln in lines:  # the modes in force at the end of the replacement
+        for _w, c in _mode_words(ln, target, only=False):
+            state[c.group] = c.op
+    after = {g: c.op for g, c in modal_context(index, source, last_line + 1).items()}
+    restore = []
+    for group, op in state.items():
+        want = after.get(group)
+        if want is not None and want != op and group in _MODE_GROUPS:
+            back = next((c for c in target.codes.values() if c.op == want), None)
+            if back is not None:
+                restore.append(back.name)
+    if restore:
+        lines.append(" ".join(restore))
+    return f"Convert selection to {target.name} ({target.title})", [(lo, hi, "\n".join(lines))]
+
+
+_MODE_GROUPS = frozenset({"plane", "units", "distance", "feed_mode"})
+# The emitter writes a plane code before a command whose plane differs from the one it believes
+# in force, so its preamble plane matters only for commands in that very plane.
+_PLANE_OPS = {Plane.XY: "plane_xy", Plane.ZX: "plane_zx", Plane.YZ: "plane_yz"}
+
+
+def _mode_words(line: str, target: Dialect, only: bool) -> list[tuple[str, CodeDef]]:
+    """The mode codes (plane, units, distance, feed mode) of an emitted ``line``; with ``only``,
+    empty unless the line has nothing else (the emitter's preamble)."""
+    from cncc.dialects import code_tenths
+
+    out = []
+    for w in line.split():
+        cdef = None
+        if len(w) > 1 and w[0] in "Gg":
+            try:
+                cdef = target.code("G", code_tenths(w[1:]))
+            except ValueError:
+                cdef = None
+        if cdef is not None and cdef.op in PREAMBLE_OPS and cdef.group in _MODE_GROUPS:
+            out.append((w, cdef))
+        elif only:
+            return []
+    return out

@@ -1,17 +1,22 @@
 """One analysis of one document: the real compiler, under a budget.
 
-``analyze(request, check)`` runs the driver's front end and path passes on the
-document text, collects the diagnostics, the commands (for code actions) and the
-time of every line (for inlay hints), and checks the codes against a target
-dialect.  It calls ``check()`` every few hundred commands so that a guarded job
-(:mod:`cncc.lsp.guard`) can stop it; what was collected up to then stays valid.
+``analyze(analysis, check)`` is the fast first phase of every edit: it runs the
+front end (with the macro executor's variable trace attached) and the path passes
+on the document text, collects the diagnostics, the commands (for code actions),
+the nominal time of every line (for inlay hints) and the variable values seen (for
+hover), and checks the codes against a target dialect.  It calls ``check()`` every
+few hundred commands so that a guarded job (:mod:`cncc.lsp.guard`) can stop it;
+what was collected up to then stays valid.  The slower second phase (the program
+on the configured machine) is :mod:`cncc.lsp.machine_check`.
 """
 
 from __future__ import annotations
 
+import os
 import time
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 from cncc import diagnostics as dg
 from cncc.diagnostics import Diagnostic, DiagnosticSink
@@ -21,7 +26,12 @@ from cncc.ir.machine import MachineModel
 from cncc.lsp.config import Settings, open_dialect
 from cncc.lsp.positions import LineIndex
 from cncc.lsp.scan import Comments, tokens
+from cncc.lsp.trace import VariableTrace
 from cncc.source import SourceMap, Span
+
+if TYPE_CHECKING:
+    from cncc.driver import Options as driver_Options
+    from cncc.lsp.machine_check import MachineCheck
 
 CHECK_EVERY = 256  # commands between two budget checks
 MAX_COMMANDS = 400_000  # commands kept for code actions (timing goes on past it)
@@ -50,6 +60,9 @@ class Analysis:
     commands: list[Command] = field(default_factory=list)
     line_time_s: dict[int, float] = field(default_factory=dict)  # 0-based line -> seconds
     stopped: str | None = None  # "budget" / "cancelled" when the run did not finish
+    sources: SourceMap | None = None  # the document (id 0) and the programs it called
+    trace: VariableTrace | None = None  # variable values seen by the macro executor (hover)
+    machine_check: MachineCheck | None = None  # the second phase, once it has ended
     reached: int = 0  # offset of the last command seen
     elapsed_s: float = 0.0
     sink: DiagnosticSink = field(default_factory=lambda: DiagnosticSink(max_count=5000))
@@ -80,8 +93,6 @@ def analyze(a: Analysis, check: Callable[[], None]) -> None:
 
 
 def _compile(a: Analysis, check: Callable[[], None]) -> None:
-    from cncc import driver
-
     req, sink = a.request, a.sink
     settings = req.settings
     try:
@@ -94,23 +105,55 @@ def _compile(a: Analysis, check: Callable[[], None]) -> None:
             a.target = open_dialect(settings.target, settings)
         except DialectError as exc:
             sink.emit(dg.BAD_OPTION, Span(0, 0, 0), f"target: {exc}")
-    a.machine = _machine(settings, sink)
-    sources = SourceMap()
-    src = sources.add(req.path or req.uri, req.text)
+    a.machine = _machine(settings, a.dialect, sink)
     if not req.text.strip():
-        sink.emit(dg.EMPTY_PROGRAM, Span(src.source_id, 0, 0), "the program contains no blocks")
+        sink.emit(dg.EMPTY_PROGRAM, Span(0, 0, 0), "the program contains no blocks")
         return
-    opts = driver.Options(inputs=[req.path], dialect=a.dialect.name, offsets_file=settings.path(settings.offsets),
-                          tools_file=settings.path(settings.tools), repair_arcs=req.repair_arcs)
-    cmds = driver.path_passes(driver.front_end(src, a.dialect, a.machine, opts, sink), a.dialect, a.machine,
-                              opts, sink)
-    _collect(a, cmds, check)
-    if settings.opt_level > 0 and req.stop_after < 0 and len(a.commands) < MAX_COMMANDS:
-        check()
-        _planned_times(a, settings.opt_level)
+    a.trace = VariableTrace()
+    a.sources = SourceMap()
+    _collect(a, compile_commands(a, a.sources, sink, machine_coords=False, trace=a.trace), check)
 
 
-def _machine(settings: Settings, sink: DiagnosticSink) -> MachineModel:
+def compile_options(req: Request, dialect: Dialect) -> driver_Options:
+    """The driver's options for one document: its tables, and its folder and the workspace
+    root as places to look for called programs."""
+    from cncc import driver
+
+    settings = req.settings
+    folders = [os.path.dirname(req.path)] if req.path else []
+    if settings.root and settings.root not in folders:
+        folders.append(settings.root)
+    return driver.Options(inputs=[req.path] if req.path else [], dialect=dialect.name,
+                          offsets_file=settings.path(settings.offsets), tools_file=settings.path(settings.tools),
+                          repair_arcs=req.repair_arcs, include_dirs=folders,
+                          dialect_options=dict(settings.dialect_options))
+
+
+def compile_commands(a: Analysis, sources: SourceMap, sink: DiagnosticSink, machine_coords: bool,
+                     trace: VariableTrace | None = None) -> Iterator[Command]:
+    """The document through the front end and the path passes (as ``driver.front_end`` and
+    ``driver.path_passes`` do, with the executor's variable trace attached); in machine
+    coordinates for the planner when ``machine_coords``."""
+    from cncc import driver
+    from cncc.frontend import InterpOptions, lower
+
+    dialect, machine = a.dialect, a.machine
+    assert dialect is not None and machine is not None
+    src = sources.add(a.request.path or a.request.uri, a.request.text)
+    opts = compile_options(a.request, dialect)
+    work, lengths, radii = driver.load_tables(opts, sink)
+    refs = tuple(tuple(r) + (0.0,) * (6 - len(r)) for r in machine.reference_positions_mm) or ((0.0,) * 6,)
+    iopts = InterpOptions(work_offsets_mm=work, tool_lengths_mm=lengths, tool_radii_mm=radii,
+                          reference_mm=refs, block_delete=opts.block_delete,  # type: ignore[arg-type]
+                          strict=opts.strict)
+    macro = driver.macro_options(opts, sink, sources)
+    macro.trace = trace
+    if machine_coords:
+        opts.emit = "timing"  # a backend that reads machine coordinates
+    return driver.path_passes(lower(src, dialect, sink, iopts, macro), dialect, machine, opts, sink)
+
+
+def _machine(settings: Settings, dialect: Dialect, sink: DiagnosticSink) -> MachineModel:
     from cncc import driver
 
     scratch = DiagnosticSink()
@@ -123,7 +166,8 @@ def _machine(settings: Settings, sink: DiagnosticSink) -> MachineModel:
                 sink.emit(dg.BAD_OPTION, Span(0, 0, 0), f"{d.message}; using a generic mill",
                           severity=dg.Severity.WARNING)
         return driver.default_machine()
-    return model
+    opts = driver.Options(dialect_options=dict(settings.dialect_options))
+    return driver.apply_dialect_to_machine(model, opts, scratch)
 
 
 def _collect(a: Analysis, cmds: Iterator[Command], check: Callable[[], None]) -> None:
@@ -154,35 +198,6 @@ def _collect(a: Analysis, cmds: Iterator[Command], check: Callable[[], None]) ->
             return
 
 
-def _planned_times(a: Analysis, level: int) -> None:
-    """Replace the nominal motion times by the planner's at ``-O<level>``."""
-    from cncc import driver
-    from cncc.backends.nominal import command_time_s
-    from cncc.ir import MOTION_TYPES
-
-    machine = a.machine
-    assert machine is not None
-    cmds = a.commands
-    try:
-        traj, _how = driver.plan_trajectory(cmds, machine, level, a.sink)
-    except Exception as exc:  # the planner is young: keep the nominal times, say why
-        a.sink.emit(dg.NOT_SUPPORTED, Span(0, 0, 0), f"-O{level} planning failed ({type(exc).__name__}: {exc}); "
-                    "inlay hints show nominal times", severity=dg.Severity.NOTE)
-        return
-    per_cmd = [0.0] * len(cmds)
-    for k, d in zip(traj.cmd_index.tolist(), traj.duration_s.tolist(), strict=True):
-        if 0 <= k < len(per_cmd):
-            per_cmd[k] += d
-    line_of = a.index.line_of
-    times: dict[int, float] = {}
-    for c, t_motion in zip(cmds, per_cmd, strict=True):
-        t = t_motion if isinstance(c, MOTION_TYPES) else command_time_s(c, machine)[0]
-        if t > 0.0:
-            line = line_of(c.span.start)
-            times[line] = times.get(line, 0.0) + t
-    a.line_time_s = times
-
-
 # ---- target checks ------------------------------------------------------------------
 def _supports(target: Dialect, letter: str, tenths: int, op: str, cycle: str, index: int) -> bool:
     same = target.code(letter, tenths)
@@ -192,32 +207,61 @@ def _supports(target: Dialect, letter: str, tenths: int, op: str, cycle: str, in
 
 
 def check_target(a: Analysis, check: Callable[[], None]) -> None:
-    """Warn where a code of the program has no counterpart (same op) in the target."""
+    """Warn where the program uses what the target cannot run: a code with no counterpart (same
+    op), an address the target rejects (in a block whose codes it does run), a macro variable
+    or statement when the target has no macros.  The target's own reason is quoted when its
+    dialect file gives one (grbl's ``[unsupported]`` table: its error numbers)."""
     dialect, target = a.dialect, a.target
     assert dialect is not None and target is not None
     comments = Comments.of(dialect)
     index = a.index
     seen: dict[tuple[str, int], bool] = {}
+    no_macros = target.macro_flavour == "none" and dialect.macro_flavour != "none"
     for line in range(index.line_count):
         if line % 1024 == 0:
             check()
         base = index.line_start(line)
+        flagged = False
+        later: list[tuple[int, int, str]] = []
         for tok in tokens(index.line_text(line), base, comments):
-            if tok.kind != "word" or tok.text not in "GM":
-                continue
-            tenths = tok.tenths
-            if tenths is None:
-                continue
-            cdef = dialect.code(tok.text, tenths)
-            if cdef is None:
-                continue
-            key = (tok.text, tenths)
-            ok = seen.get(key)
-            if ok is None:
-                ok = seen[key] = _supports(target, tok.text, tenths, cdef.op, cdef.cycle, cdef.index)
-            if not ok:
-                what = cdef.summary.split(":")[0].split(";")[0].rstrip(".") or cdef.op
-                why = target.unsupported_reason(tok.text, tenths)  # the target controller's own reason
-                a.sink.emit(dg.TARGET_UNSUPPORTED, Span(0, tok.start, tok.end),
-                            f"{target.name} cannot run {cdef.name} ({what})" + (f": {why}" if why else ""))
+            if tok.kind == "word" and tok.text in "GM":
+                flagged |= _check_code(a, target, tok.text, tok.tenths, tok.start, tok.end, seen)
+            elif tok.kind == "word" and tok.text in dialect.addresses:
+                why = target.unsupported_reason(tok.text)
+                if why:
+                    later.append((tok.start, tok.end, f"{target.name} cannot read {tok.text} words: {why}"))
+            elif no_macros and tok.kind in ("var", "keyword"):
+                what = f"#{tok.text}" if tok.kind == "var" else tok.text
+                why = target.unsupported_reason("#") if tok.kind == "var" else target.unsupported_reason("[")
+                later.append((tok.start, tok.end, f"{target.name} has no macros: it cannot run {what}"
+                              + (f" ({why})" if why else "")))
+        if not flagged:
+            seen_letters: set[str] = set()
+            for start, end, message in later:
+                key = message.split(":")[0]
+                if key not in seen_letters:
+                    seen_letters.add(key)
+                    a.sink.emit(dg.TARGET_UNSUPPORTED, Span(0, start, end), message)
 
+
+def _check_code(a: Analysis, target: Dialect, letter: str, tenths: int | None, start: int, end: int,
+                seen: dict[tuple[str, int], bool]) -> bool:
+    """Warn if the target has no counterpart of code ``letter``+``tenths``; True if it warned."""
+    dialect = a.dialect
+    assert dialect is not None
+    if tenths is None:
+        return False
+    cdef = dialect.code(letter, tenths)
+    if cdef is None:
+        return False
+    key = (letter, tenths)
+    ok = seen.get(key)
+    if ok is None:
+        ok = seen[key] = _supports(target, letter, tenths, cdef.op, cdef.cycle, cdef.index)
+    if ok:
+        return False
+    what = cdef.summary.split(":")[0].split(";")[0].rstrip(".") or cdef.op
+    why = target.unsupported_reason(letter, tenths)  # the target controller's own reason
+    a.sink.emit(dg.TARGET_UNSUPPORTED, Span(0, start, end),
+                f"{target.name} cannot run {cdef.name} ({what})" + (f": {why}" if why else ""))
+    return True

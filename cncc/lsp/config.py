@@ -4,8 +4,9 @@ Precedence, lowest first: built-in defaults, the ``cncc.toml`` found by walking 
 from the document's folder (stopping at the workspace root), the client's
 initialization options / ``workspace/didChangeConfiguration`` settings.  The dialect
 of a document is then: a modeline in its first lines (``(cncc: dialect=szgh)``), the
-configured dialect, a guess from the content, a guess from the file extension,
-and finally the driver's default.
+configured dialect, the command line's guess from the content and the well-known
+extensions (:mod:`cncc.frontend.detect`), SZGH's named programs, the one dialect
+file that claims the extension, and finally the driver's default.
 """
 
 from __future__ import annotations
@@ -105,30 +106,35 @@ def read_config(path: str) -> tuple[dict[str, Any], str | None]:
 
 # ---- dialects --------------------------------------------------------------------
 _MODELINE_RE = re.compile(r"cncc\s*:\s*dialect\s*=\s*([\w./-]+)", re.IGNORECASE)
+# Marks the command line's detection (cncc/frontend/detect.py) does not look for.
 _CONTENT_HINTS: tuple[tuple[str, re.Pattern[str]], ...] = (
     ("szgh", re.compile(r"^\s*(?:N\d+\s*)?(?:WAT\b|FILEON|PP[A-Z]|M98\s*P[A-Za-z])", re.MULTILINE)),
-    ("linuxcnc", re.compile(r"^\s*O<\w+>|#<\w+>|^\s*o\d+\s+(?:sub|call|if|while)\b", re.MULTILINE | re.IGNORECASE)),
-    ("grbl", re.compile(r"^\s*\$(?:H|X|J=|\d+=)", re.MULTILINE)),
-    ("series8", re.compile(r"^\s*N\d{3,4}\s*G0?[0-3](?:\s*[XYZIJ]\d+)+\s*$", re.MULTILINE)),
 )
 
 
 def guess_dialect(path: str, text: str, configured: str | None) -> str:
-    """The dialect of one document (see the module docstring for the order)."""
+    """The dialect of one document: a modeline, else the configured dialect, else the command
+    line's guess (``cncc.frontend.detect``: marks in the text, then well-known extensions),
+    else a few more content marks, else the only dialect file that claims the extension,
+    else the default."""
+    from cncc.frontend.detect import guess_dialect as detect
+
     known = available()
-    head = text[:2000]
-    m = _MODELINE_RE.search(head)
+    m = _MODELINE_RE.search(text[:2000])
     if m is not None:
         return m.group(1)
     if configured:
         return configured
     sample = text[:200_000]
+    name, why = detect(path, sample)
+    if name in known and not why.startswith("nothing"):
+        return name
     for name, pattern in _CONTENT_HINTS:
         if name in known and pattern.search(sample):
             return name
     ext = os.path.splitext(path)[1].lower()
     matches = [name for name in known if ext and ext in _extensions(name)]
-    if len(matches) == 1 or (matches and DEFAULT_DIALECT not in matches):
+    if len(matches) == 1:
         return matches[0]
     return DEFAULT_DIALECT
 

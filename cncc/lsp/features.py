@@ -19,7 +19,7 @@ from cncc.lsp.hover import word_hover
 from cncc.lsp.navigate import Outline, Ref, outline, program_key
 from cncc.lsp.scan import Comments, token_at
 from cncc.lsp.server import CnccServer
-from cncc.lsp.variables import variable_value
+from cncc.lsp.variables import hover_variable
 
 GCODE_SUFFIXES = (".nc", ".cnc", ".tap", ".ngc", ".gcode", ".mpf", ".ptp", "")
 
@@ -78,7 +78,10 @@ def register(ls: CnccServer) -> None:  # noqa: C901 - one closure per LSP method
             return None
         body: str | None
         if tok.kind == "var":
-            body = variable_value(text, index, dialect, int(tok.text), at)
+            st = ls.docs.get(uri)
+            a = st.analysis if st is not None else None
+            trace = a.trace if a is not None and a.request.text == text else None
+            body = hover_variable(text, index, dialect, int(tok.text), tok.start, trace)
         elif tok.kind == "word":
             body = word_hover(dialect, tok)
         else:
@@ -242,7 +245,7 @@ async def _code_actions(ls: CnccServer, params: lsp.CodeActionParams) -> list[ls
                     target = open_dialect(name, settings)
                 except DialectError:
                     continue
-                conv = actions.convert_selection(index, cur.commands, rng.start.line, last, target)
+                conv = actions.convert_selection(index, cur.commands, rng.start.line, last, dialect, target)
                 if conv is not None:
                     out.append(_action(conv[0], lsp.CodeActionKind.RefactorRewrite, uri, index, conv[1], None))
     return out

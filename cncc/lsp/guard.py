@@ -7,6 +7,12 @@ runs the work in a daemon thread; the work calls ``check()`` now and then
 the budget is spent or the job was cancelled and the work did not notice (a loop
 that never reaches a ``check``).  Either way the job's future resolves with the
 reason, and whatever the work had written to its result object so far is kept.
+
+Jobs have two priorities.  A *foreground* job (the fast diagnostics of an edit)
+holds the :class:`Gate` while it runs; a *background* job (the machine checks that
+follow) waits at each of its ``check()`` calls while any foreground job runs, so it
+never competes with a fresh edit for the interpreter lock.  The time spent waiting
+does not count against the background job's budget.
 """
 
 from __future__ import annotations
@@ -28,12 +34,54 @@ class Stopped(BaseException):
     """
 
 
+class Gate:
+    """Counts running foreground jobs; background jobs wait while there are any."""
+
+    def __init__(self) -> None:
+        self._busy = 0
+        self._cv = threading.Condition()
+
+    def enter(self) -> None:
+        with self._cv:
+            self._busy += 1
+
+    def leave(self) -> None:
+        with self._cv:
+            self._busy -= 1
+            if self._busy <= 0:
+                self._busy = 0
+                self._cv.notify_all()
+
+    @property
+    def busy(self) -> bool:
+        return self._busy > 0
+
+    def wait_idle(self, stop: Callable[[], bool], slice_s: float = 0.05) -> float:
+        """Block while a foreground job runs (or until ``stop()``); returns the seconds waited."""
+        if self._busy <= 0:
+            return 0.0
+        t0 = time.monotonic()
+        with self._cv:
+            while self._busy > 0 and not stop():
+                self._cv.wait(slice_s)
+        return time.monotonic() - t0
+
+
 class Job:
     """One guarded run of ``work(check)``; ``future`` resolves to the stop reason
-    (``None`` when the work finished, ``"budget"`` or ``"cancelled"``)."""
+    (``None`` when the work finished, ``"budget"`` or ``"cancelled"``).
 
-    def __init__(self, work: Callable[[Callable[[], None]], None], budget_s: float) -> None:
+    With a ``gate``, a foreground job holds it while it runs and a ``background``
+    job waits for it at every ``check()``."""
+
+    def __init__(self, work: Callable[[Callable[[], None]], None], budget_s: float,
+                 gate: Gate | None = None, background: bool = False,
+                 prelude: Callable[[], None] | None = None) -> None:
         self.future: Future[str | None] = Future()
+        self._prelude = prelude  # run first, never interrupted by force (imports of C extensions)
+        self._shielded = prelude is not None
+        self._gate = gate
+        self._background = background
         self._work = work
         self._deadline = time.monotonic() + budget_s
         self._budget_s = budget_s
@@ -45,24 +93,35 @@ class Job:
 
     def start(self) -> Job:
         self._running = True
+        if self._gate is not None and not self._background:
+            self._gate.enter()
         self._thread.start()
-        self._timer = threading.Timer(self._budget_s + GRACE_S, self._interrupt, args=("budget",))
-        self._timer.daemon = True
-        self._timer.start()
+        if self._background:  # its deadline moves while it waits for the gate
+            threading.Thread(target=self._watch, name="cncc-lsp-watchdog", daemon=True).start()
+        else:
+            self._timer = threading.Timer(self._budget_s + GRACE_S, self._interrupt, args=("budget",))
+            self._timer.daemon = True
+            self._timer.start()
         return self
 
     def check(self) -> None:
         """Raise :class:`Stopped` if the job should stop (call from the work)."""
+        if self._background and self._gate is not None and self._gate.busy:
+            self._deadline += self._gate.wait_idle(lambda: self._reason is not None)
         if self._reason is not None:
             raise Stopped(self._reason)
         if time.monotonic() > self._deadline:
             self._reason = "budget"
             raise Stopped("budget")
 
-    def cancel(self) -> None:
+    def cancel(self, grace_s: float = GRACE_S) -> None:
+        """Stop the job: at its next ``check()``, or by force after ``grace_s``."""
         if self._reason is None:
             self._reason = "cancelled"
-        timer = threading.Timer(GRACE_S, self._interrupt, args=("cancelled",))
+        if grace_s <= 0.0:
+            self._interrupt("cancelled")
+            return
+        timer = threading.Timer(grace_s, self._interrupt, args=("cancelled",))
         timer.daemon = True
         timer.start()
 
@@ -72,26 +131,46 @@ class Job:
 
     def _main(self) -> None:
         reason: str | None = None
+        error: BaseException | None = None
         try:
+            if self._prelude is not None:
+                try:
+                    self._prelude()
+                finally:
+                    self._shielded = False
+            self._work(self.check)
+        except Stopped:
+            reason = self._reason or "budget"
+        except BaseException as exc:  # a bug in the work: report it through the future
+            error = exc
+        while True:  # no forced stop can arrive once _running is False
             try:
-                self._work(self.check)
-            except Stopped:
-                reason = self._reason or "budget"
-            finally:
                 with self._lock:
                     self._running = False
                     _clear_async_exc(self._thread)
-        except Stopped:  # delivered while leaving: the work was done or stopped anyway
-            reason = reason or self._reason
-        except BaseException as exc:  # a bug in the work: report it through the future
-            if not self.future.done():
-                self.future.set_exception(exc)
+                break
+            except Stopped:  # delivered while leaving: the work was done or stopped anyway
+                reason = reason or self._reason or "budget"
+        if self._timer is not None:
+            self._timer.cancel()
+        if self._gate is not None and not self._background:
+            self._gate.leave()
+        if self.future.done():
             return
-        finally:
-            if self._timer is not None:
-                self._timer.cancel()
-        if not self.future.done():
+        if error is not None:
+            self.future.set_exception(error)
+        else:
             self.future.set_result(reason)
+
+    def _watch(self) -> None:
+        """Watchdog of a background job: its deadline moves while it waits for the gate."""
+        while self._running:
+            time.sleep(0.05)
+            if self._gate is not None and self._gate.busy:
+                continue
+            if time.monotonic() > self._deadline + GRACE_S:
+                self._interrupt("budget")
+                return
 
     def _interrupt(self, reason: str) -> None:
         with self._lock:
@@ -99,6 +178,8 @@ class Job:
                 return
             if self._reason is None:
                 self._reason = reason
+            if self._shielded:  # stopped at the first check() after the prelude
+                return
             _set_async_exc(self._thread, Stopped)
 
 

@@ -6,6 +6,12 @@ running one.  Analyses run in guarded threads (:mod:`cncc.lsp.guard`) so the eve
 loop keeps answering requests while the compiler works, and an analysis that runs
 past its budget is stopped with its partial results published.  Requests read the
 latest analysis; lexical features (hover, completion, go-to) read the text itself.
+
+An analysis has two phases.  The first (:mod:`cncc.lsp.analysis`) is published as
+soon as it ends.  The second (:mod:`cncc.lsp.machine_check`: soft limits, step
+rates, the planner's times) runs after it as a background job, which yields to any
+first phase and which a new edit stops at once; when it ends, the merged
+diagnostics of both phases are published again for the same version.
 """
 
 from __future__ import annotations
@@ -15,6 +21,7 @@ import contextlib
 import os
 from collections.abc import Callable
 from dataclasses import dataclass, field
+from pathlib import Path
 from typing import Any, TypeVar
 from urllib.parse import unquote, urlparse
 
@@ -27,9 +34,10 @@ from cncc.dialects import Dialect, DialectError
 from cncc.lsp import convert
 from cncc.lsp.analysis import Analysis, Request, analyze, new_analysis
 from cncc.lsp.config import Settings, find_config, guess_dialect, open_dialect, read_config
-from cncc.lsp.guard import Job
+from cncc.lsp.guard import Gate, Job
+from cncc.lsp.machine_check import MachineCheck, machine_phase, wanted, warm_up
 from cncc.lsp.positions import LineIndex
-from cncc.source import Span
+from cncc.source import SourceMap, Span
 
 T = TypeVar("T")
 
@@ -41,6 +49,8 @@ class DocState:
     analysis: Analysis | None = None
     job: Job | None = None
     pending: asyncio.Task[None] | None = None
+    machine_job: Job | None = None  # the second phase of the current analysis
+    machine_task: asyncio.Task[None] | None = None
     ready: asyncio.Event = field(default_factory=asyncio.Event)
     config_error: str | None = None
 
@@ -52,6 +62,7 @@ class CnccServer(LanguageServer):
         self.client_settings: dict[str, Any] = {}
         self.docs: dict[str, DocState] = {}
         self.root: str | None = None
+        self.gate = Gate()  # background jobs wait while a first phase runs
 
     # ---- settings and dialects
     def doc_path(self, uri: str) -> str:
@@ -98,7 +109,16 @@ class CnccServer(LanguageServer):
             st.pending.cancel()
         if st.job is not None:
             st.job.cancel()
+        self.stop_machine_phase(st)
         st.pending = asyncio.ensure_future(self._debounced(uri))
+
+    def stop_machine_phase(self, st: DocState) -> None:
+        """Stop the second phase now (it must not slow down the analysis of a new edit)."""
+        if st.machine_task is not None and not st.machine_task.done():
+            st.machine_task.cancel()
+        if st.machine_job is not None:
+            st.machine_job.cancel(grace_s=0.0)
+            st.machine_job = None
 
     async def _debounced(self, uri: str) -> None:
         settings, error = self.settings_for(uri)
@@ -109,7 +129,7 @@ class CnccServer(LanguageServer):
         req = Request(uri, self.doc_path(uri), st.version, text, self.dialect_name(uri, text, settings), settings)
         a = new_analysis(req)
         a.index.encoding = _encoding(self)
-        job = Job(lambda check: analyze(a, check), settings.budget_s)
+        job = Job(lambda check: analyze(a, check), settings.budget_s, gate=self.gate)
         st.job = job.start()
         try:
             reason = await asyncio.wrap_future(job.future)
@@ -130,16 +150,54 @@ class CnccServer(LanguageServer):
         st.analysis = a
         st.ready.set()
         self.publish(a)
+        if wanted(a):
+            st.machine_task = asyncio.ensure_future(self._machine_phase(uri, a))
+
+    async def _machine_phase(self, uri: str, a: Analysis) -> None:
+        st = self.state(uri)
+        m = MachineCheck()
+        job = Job(lambda check: machine_phase(a, m, check), a.request.settings.budget_s, gate=self.gate,
+                  background=True, prelude=warm_up)
+        st.machine_job = job.start()
+        try:
+            reason = await asyncio.wrap_future(job.future)
+        except asyncio.CancelledError:
+            job.cancel(grace_s=0.0)
+            raise
+        except Exception as exc:  # a compiler bug: say so in the document, keep serving
+            m.diagnostics.append(dg.Diagnostic(dg.BAD_OPTION, dg.Severity.ERROR, Span(0, 0, 0),
+                                               f"cncc internal error in the machine checks: "
+                                               f"{type(exc).__name__}: {exc}"))
+            reason = None
+        if st.machine_job is job:
+            st.machine_job = None
+        if reason == "cancelled" or st.analysis is not a:
+            return
+        m.stopped = reason
+        a.machine_check = m
+        if m.line_time_s is not None:
+            a.line_time_s = m.line_time_s
+        self.publish(a)
 
     def publish(self, a: Analysis) -> None:
         settings = a.request.settings
-        items = convert.diagnostics(a.index, a.request.uri, a.diagnostics, settings.max_diagnostics)
+        index, uri = a.index, a.request.uri
+        items = convert.diagnostics(index, uri, a.diagnostics, settings.max_diagnostics, files_of(a.sources, index))
+        m = a.machine_check
+        if m is not None:
+            items += convert.diagnostics(index, uri, m.diagnostics, settings.max_diagnostics - len(items),
+                                         files_of(m.sources, index))
         if a.stopped:
-            line = a.index.line_of(a.reached)
-            items.append(convert.diagnostic(a.index, a.request.uri, dg.Diagnostic(
+            line = index.line_of(a.reached)
+            items.append(convert.diagnostic(index, uri, dg.Diagnostic(
                 dg.ANALYSIS_STOPPED, dg.Severity.NOTE, Span(0, a.reached, a.reached),
                 f"analysis stopped after {settings.budget_s:g} s at line {line + 1} ({a.stopped}); "
                 "the lines below were not checked")))
+        if m is not None and m.stopped:
+            items.append(convert.diagnostic(index, uri, dg.Diagnostic(
+                dg.ANALYSIS_STOPPED, dg.Severity.NOTE, Span(0, 0, 0),
+                f"machine checks stopped after {settings.budget_s:g} s while {m.step} ({m.stopped}); "
+                "raise budget_s to see them all")))
         self.text_document_publish_diagnostics(
             lsp.PublishDiagnosticsParams(uri=a.request.uri, diagnostics=items, version=a.request.version))
         caps = self.client_capabilities.workspace
@@ -166,6 +224,22 @@ class CnccServer(LanguageServer):
     def text_and_index(self, uri: str) -> tuple[str, LineIndex]:
         text = self.workspace.get_text_document(uri).source
         return text, LineIndex(text, _encoding(self))
+
+
+def files_of(sources: SourceMap | None, index: LineIndex) -> convert.Files:
+    """Where the diagnostics' other source ids (called programs) are: their URI and lines."""
+    cache: dict[int, tuple[str, LineIndex] | None] = {}
+
+    def find(source_id: int) -> tuple[str, LineIndex] | None:
+        if source_id not in cache:
+            src = sources.get(source_id) if sources is not None and source_id > 0 else None
+            if src is None or not os.path.isabs(src.name):
+                cache[source_id] = None
+            else:
+                cache[source_id] = (Path(src.name).as_uri(), LineIndex(src.text, index.encoding))
+        return cache[source_id]
+
+    return find
 
 
 def _encoding(server: LanguageServer) -> str:

@@ -1,9 +1,12 @@
-"""Values of macro variables for hover: straight-line reading of assignments.
+"""Values of macro variables for hover.
 
-Reads the assignments (``#1 = 5``, ``#2 = #1 * 2``) above a point in document
-order with the front end's parser, and evaluates their expressions when every
-operand is known.  Jumps, loops and calls are not followed, so when the program
-has any, the hover says the value is the last one assigned above, not a proof.
+The first choice is what the analysis run saw at that very reference
+(:mod:`cncc.lsp.trace`: the macro executor's own evaluation, through loops, jumps
+and calls).  When the document has changed since, or the program did not run on
+the macro executor, the fallback reads the assignments (``#1 = 5``,
+``#2 = #1 * 2``) above the point in document order and evaluates them when every
+operand is known; jumps, loops and calls are not followed then, and the hover says
+so.
 """
 
 from __future__ import annotations
@@ -15,6 +18,7 @@ from collections.abc import Callable
 from cncc.diagnostics import DiagnosticSink
 from cncc.dialects import Dialect
 from cncc.lsp.positions import LineIndex
+from cncc.lsp.trace import Seen, VariableTrace
 from cncc.source import SourceFile
 
 _ASSIGN_RE = re.compile(r"#\s*\d+\s*=")
@@ -33,6 +37,33 @@ _BINOPS: dict[str, Callable[[float, float], float]] = {
     "GT": lambda a, b: float(a > b), "GE": lambda a, b: float(a >= b), "LT": lambda a, b: float(a < b),
     "LE": lambda a, b: float(a <= b),
 }
+
+
+def hover_variable(text: str, index: LineIndex, dialect: Dialect, number: int, site: int,
+                   trace: VariableTrace | None) -> str:
+    """Markdown for the reference ``#number`` whose ``#`` is at offset ``site``."""
+    if trace is not None and trace.ran:
+        seen = trace.at(site)
+        if seen is not None and seen.passes:
+            return traced_text(number, seen)
+        return (f"**#{number}** — this reference was not reached when cncc ran the program "
+                "(a branch not taken, code after the end, or the run stopped before it).")
+    return variable_value(text, index, dialect, number, site)
+
+
+def traced_text(number: int, seen: Seen) -> str:
+    """What a reference saw during the run, in words."""
+    head = f"**#{number}**"
+    if seen.values == 0:
+        return f"{head} is vacant here" + (f" (on all {seen.passes} passes)" if seen.passes > 1 else "") + "."
+    last = "vacant" if seen.last is None else f"{seen.last:g}"
+    if seen.passes == 1:
+        return f"{head} = {last} when cncc ran this block."
+    if seen.lo == seen.hi and seen.vacant == 0:
+        return f"{head} = {last} (the same on all {seen.passes} passes through this block)."
+    vacant = f", vacant on {seen.vacant}" if seen.vacant else ""
+    return (f"{head} = {last} on the last of {seen.passes} passes through this block\n\n"
+            f"values from {seen.lo:g} to {seen.hi:g}{vacant}")
 
 
 def variable_value(text: str, index: LineIndex, dialect: Dialect, number: int, offset: int) -> str:

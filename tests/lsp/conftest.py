@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import sys
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
@@ -54,16 +55,21 @@ class Published:
         self._arm()
         self.event.set()
 
-    async def wait(self, uri: str, version: int, timeout_s: float = 30.0) -> list[lsp.Diagnostic]:
+    async def wait(self, uri: str, version: int, timeout_s: float = 30.0,
+                   until: Callable[[list[lsp.Diagnostic]], bool] | None = None) -> list[lsp.Diagnostic]:
+        """The first diagnostics published for ``version`` (that satisfy ``until``, when given)."""
         import asyncio
 
         async def found() -> list[lsp.Diagnostic]:
             while True:
                 for p in self.items:
-                    if p.uri == uri and p.version == version:
+                    if p.uri == uri and p.version == version and (until is None or until(list(p.diagnostics))):
                         return list(p.diagnostics)
                 self.event.clear()
                 await self.event.wait()
 
         return await asyncio.wait_for(found(), timeout_s)
 
+    def all(self, uri: str, version: int) -> list[list[lsp.Diagnostic]]:
+        """Every publication for ``version`` so far, in order."""
+        return [list(p.diagnostics) for p in self.items if p.uri == uri and p.version == version]

@@ -76,6 +76,8 @@ class MacroOptions:
     load_source: Callable[[str], SourceFile | None] | None = None
     protected_paths: tuple[str, ...] = ()
     files_used: list[str] = field(default_factory=list)  # filled: subprogram files loaded (-M)
+    # called before (False) and after (True) each block runs (the language server records variable values)
+    trace: Callable[[Executor, Block, bool], None] | None = None
 
 
 def layout_for(dialect: Dialect) -> VariableLayout:
@@ -164,6 +166,7 @@ class Executor:
     def _loop(self) -> Iterator[Command]:
         stack = self.stack
         max_steps = self.opts.max_steps
+        trace = self.opts.trace
         while stack and not self.stopped:
             fr = stack[-1]
             i = fr.pc
@@ -180,11 +183,15 @@ class Executor:
                     break
                 self.block = block
                 self.it.source_id = fr.unit.source.source_id
+                if trace is not None:
+                    trace(self, block, False)
                 try:
                     self._run_block(fr, i, block)
                 except MacroError as exc:
                     span = fr.unit.span(exc.start, exc.end) if exc.start >= 0 else fr.unit.span(block.start, block.end)
                     self.fail(exc.code, span, exc.message)
+                if trace is not None:
+                    trace(self, block, True)
             if self.out:
                 yield from self.out
                 self.out = []
