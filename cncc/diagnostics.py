@@ -86,6 +86,11 @@ DIALECT_GUESSED = _define("N0251", N, "no -x given: the dialect was guessed from
 SOURCE_INCONSISTENT = _define("W0252", W, "the controller's manual contradicts itself here; a dialect option decides")
 INVALID_ARC = _define("E0253", E, "an arc the dialect cannot make (SERIES 8: signed I/J or more than one quadrant)")
 DIALECT_IGNORED = _define("W0254", W, "a word or code the dialect's controller accepts and ignores")
+VENDOR_CYCLE = _define("E0255", E, "a code the manual names without defining its words (SERIES 8 G34-G36, G43, "
+                       "G49-G51): it needs a cycle macro")
+ASSUMED = _define("W0256", W, "the manual leaves this open; the spec's assumption is used (a dialect option)")
+CORNER_INSERT = _define("E0257", E, "a G10 corner that cannot be inserted (next move not a line, setback too long, "
+                        "no corner)")
 
 # --- E04xx: canned cycles and hole patterns ----------------------------------------
 CYCLE_NO_R = _define("E0401", E, "a drilling block without an R level")

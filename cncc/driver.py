@@ -301,7 +301,8 @@ def frame_passes(dialect: Dialect, machine_coords: bool) -> list[Any]:
     if machine_coords:
         out += [ToMachine(), ToolLength()]
     out.append(CutterComp(outer_corner=str(dialect.option("comp_outer_corner", "intersection")),
-                          lookahead=int(dialect.option("comp_lookahead", 2))))
+                          lookahead=int(dialect.option("comp_lookahead", 2)),
+                          startup=str(dialect.option("comp_startup", "type_a"))))
     return out
 
 

@@ -1,8 +1,9 @@
 """Front ends of the dialects that need more than the Fanuc-family path.
 
 ``lower_checked`` is what :func:`cncc.frontend.lower` calls for a dialect with a
-``checker`` (grbl: every block is checked as the controller would before it runs)
-or with the ``linuxcnc`` macro flavour (O-word control flow and named parameters,
+``checker`` (grbl: every block is checked as the controller would before it runs;
+series8: the SERIES 8 block semantics of :mod:`cncc.frontend.series8`) or with the
+``linuxcnc`` macro flavour (O-word control flow and named parameters,
 run by :mod:`cncc.frontend.linuxcnc`).
 """
 
@@ -20,6 +21,10 @@ from cncc.source import SourceFile
 
 def lower_checked(src: SourceFile, dialect: Dialect, sink: DiagnosticSink, options: InterpOptions,
                   macro: object = None) -> Iterator[Command]:
+    if dialect.raw.get("checker") == "series8":
+        from cncc.frontend.series8.front import lower_series8
+
+        return lower_series8(src, dialect, sink, options)
     parser = Parser(dialect, sink, ParseOptions(strict=options.strict))
     interp = Interpreter(dialect, sink, src.source_id, options)
     if dialect.macro_flavour == "linuxcnc":

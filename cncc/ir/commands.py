@@ -231,6 +231,14 @@ class CycleKind(enum.Enum):
     BACK_BORE = "back_bore"  # G87: cut upward from R to the bottom
     BORE_MANUAL = "bore_manual"  # G88: operator retracts by hand
     BORE_DWELL_FEED_OUT = "bore_dwell_feed_out"  # G89
+    # SERIES 8's own cycles (docs/dialects-notes.md; sequences in cncc/passes/series8_cycles.py)
+    PECK_FIRST = "peck_first"  # G83: first stroke to the level I, then pecks of J, back to R after each
+    BORE_DWELL_STOP_OUT = "bore_dwell_stop_out"  # G86: dwell, spindle stop, feed out to R
+    BORE_DWELL_STOP_RAPID_OUT = "bore_dwell_stop_rapid_out"  # G86 read as its title says (rapid out)
+    CASE_BORE = "case_bore"  # G87: rapid to R, feed to Z and stay at depth
+    BORE_ORIENT_OUT = "bore_orient_out"  # G88: dwell, orient, shift I J, feed out, shift back
+    BORE_ORIENT_RAPID_OUT = "bore_orient_rapid_out"  # G88 read as its title says (rapid out)
+    BACK_BORE_RETURN = "back_bore_return"  # G89: back bore that feeds back down to R before leaving
 
 
 @dataclass(frozen=True, slots=True)
@@ -258,6 +266,7 @@ class Cycle:
     feed_mm_min: float
     return_initial: bool = True  # G98 (True) or G99 (False) as programmed
     peck_mm: float = 0.0  # Q: depth per peck, 0 without pecks
+    first_depth_mm: float | None = None  # SERIES 8 G83 I: level of the first stroke (None: R + peck)
     clearance_mm: float = 0.0  # d: G73 retract, G83 clearance, peck-tap back-off
     peck_tap_to_r: bool = True  # peck tapping returns to R (True) or backs off by d
     shift_mm: Vec6 = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)  # G76/G87 shift away from the wall

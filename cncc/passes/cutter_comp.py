@@ -67,6 +67,7 @@ class CutterComp(Pass):
     outer_corner: str = "intersection"  # or "arc": an arc about every outside corner
     lookahead: int = 2  # moves without plane motion looked through for the next corner
     gouge_check: bool = True
+    startup: str = "type_a"  # or "perpendicular": square off the start point, then the first element (SERIES 8)
 
     def run(self, cmds: Iterable[Command], ctx: PassContext) -> Iterator[Command]:
         comp = _Comp(self, ctx)
@@ -224,6 +225,13 @@ class _Comp:
         if p is None:
             if self.was_on:  # continuing after the look-ahead ran out: jump to the new vector
                 yield from self._connect(c, el.q0)
+            elif self.opts.startup == "perpendicular" and not isinstance(c, Arc):
+                if self.last is None:
+                    self.last = _base(c.start, c.frame)
+                yield from self._connect(c, el.q0)  # square off the start point; the element is cut whole
+                self.pending = _Pending(el, c, c.frame.plane, startup=False)
+                self.was_on = True
+                return
             else:
                 if isinstance(c, Arc):
                     self.ctx.sink.emit(dg.COMP_ON_ARC, c.span, "cutter compensation cannot start on an arc; "

@@ -258,3 +258,5 @@ SEQUENCES: dict[CycleKind, Callable[[_Path], None]] = {
     CycleKind.BACK_BORE: _back_bore,
     CycleKind.BORE_MANUAL: _manual,
 }
+
+from cncc.passes import series8_cycles as _series8_cycles  # noqa: E402,F401  (registers the SERIES 8 kinds)

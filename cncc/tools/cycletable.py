@@ -6,7 +6,8 @@
 
 For every dialect with canned cycles and every cycle code, one hole is drilled from
 the initial level I = 10 with R = 2 and bottom Z = -10 (a back bore: R = -10, top
-Z = 2), once programmed in G90 and once in G91 (R from I, Z from R).  The two must
+Z = 2), once programmed in G90 and once in G91 (R from I, Z from R; SERIES 8 keeps
+its levels absolute, and having no G98/G99 it shows the same moves in both columns).  The two must
 give the same moves, or the tool stops; the table lists them in words for G98 and
 G99.  ``tests/tools/test_cycletable.py`` runs the check, so the page cannot drift.
 """
@@ -24,28 +25,44 @@ from cncc.ir import Command, Dwell, Linear, Rapid, SetMode, Spindle, SpindleStat
 DOC = Path(__file__).resolve().parents[2] / "docs" / "cycles.md"
 BEGIN, END = "<!-- cycletable:begin -->", "<!-- cycletable:end -->"
 _PECK_OR_SHIFT = ("peck", "peck_high_speed", "fine_bore", "back_bore")
-_DWELLS = ("drill_dwell", "bore_dwell_feed_out", "tap", "tap_left", "fine_bore", "back_bore", "bore_manual")
+_DWELLS = ("drill_dwell", "bore_dwell_feed_out", "tap", "tap_left", "fine_bore", "back_bore", "bore_manual",
+           "bore_dwell_stop_out", "bore_orient_out", "back_bore_return")
+_BACK = ("back_bore", "back_bore_return")
+# SERIES 8's own words: G83 I (first depth level) J (peck), G88/G89 I (shift).
+_OWN_WORDS = {"peck_first": "I-2. J4.", "bore_orient_out": "I2.", "back_bore_return": "I2."}
 
 
 def _block(dialect: str, c: CodeDef, incremental: bool) -> str:
-    back = c.cycle == "back_bore"
+    back = c.cycle in _BACK
     r, z = (-10.0, 2.0) if back else (2.0, -10.0)
-    if incremental:
+    absolute_levels = bool(load_dialect(dialect).option("cycle_levels_absolute", False))
+    if incremental and not absolute_levels:
         r, z = r - 10.0, z - r
     words = [f"{c.name} {'G91' if incremental else 'G90'} X5. Y0. Z{z:g}. R{r:g}."]
     if c.cycle in _PECK_OR_SHIFT:
         words.append("Q4." if c.cycle.startswith("peck") else "Q2.")
+    if c.cycle in _OWN_WORDS:
+        words.append(_OWN_WORDS[c.cycle])
     if c.cycle in _DWELLS:
         words.append("P1" if dialect == "szgh" else "P1.")
-    if dialect == "szgh" and c.cycle.startswith("tap"):
-        words.append("K2.")
+    pitch = str(load_dialect(dialect).option("cycle_pitch_word", ""))
+    if pitch and c.cycle.startswith("tap"):
+        words.append(f"{pitch}2.")
     return " ".join(words).replace(".. ", ". ").replace("..", ".")
+
+
+def _has_returns(dialect: str) -> bool:
+    """Whether the dialect has G98/G99 return levels (SERIES 8 always returns to R)."""
+    return any(c.op == "return_initial" for c in load_dialect(dialect).codes.values())
 
 
 def _program(dialect: str, c: CodeDef, g98: bool, incremental: bool) -> str:
     spindle = "M04" if c.cycle == "tap_left" else "M03"
-    return (f"S500 {spindle}\nF100.\nG00 X0. Y0. Z10.\nG{98 if g98 else 99} {_block(dialect, c, incremental)}\n"
-            "G80\n")
+    d = load_dialect(dialect)
+    metric = next((k.name for k in d.codes.values() if k.op == "metric"), "") if d.default_units == "inch" else ""
+    ret = f"G{98 if g98 else 99} " if _has_returns(dialect) else ""
+    return (f"{metric + chr(10) if metric else ''}S500 {spindle}\nF100.\nG00 X0. Y0. Z10.\n"
+            f"{ret}{_block(dialect, c, incremental)}\nG80\n")
 
 
 def _describe(cmds: list[Command], back: bool) -> str:
@@ -98,7 +115,7 @@ def table() -> str:
         for c in codes:
             cells = []
             for g98 in (True, False):
-                back = c.cycle == "back_bore"
+                back = c.cycle in _BACK
                 absolute = _describe(_run(name, _program(name, c, g98, False)), back)
                 relative = _describe(_run(name, _program(name, c, g98, True)), back)
                 if absolute != relative:
