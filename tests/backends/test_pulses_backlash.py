@@ -118,7 +118,7 @@ def monotone_edges(v: float, a: float, j: float, dur: float) -> list[float]:
     if j:  # v + a t + (j/2) t^2 = 0, in the form without cancellation
         disc = a * a - 2 * j * v
         q = -0.5 * (a + math.copysign(math.sqrt(disc), a)) if disc >= 0 else 0.0
-        cands = [q / (j / 2), v / q] if q else []
+        cands = [2 * (q / j), v / q] if q else []
     else:
         cands = [-v / a] if a else []
     zs = sorted(z for z in cands if math.isfinite(z) and 0 < z < dur)
