@@ -25,11 +25,12 @@ from cncc.ir import Arc, Command, FeedRate, Linear, Plane
 from cncc.ir.fastnew import new_rapid, new_span
 from cncc.source import SourceFile, Span
 
-_NUM = r"([-+]?[\d.]+)"
+_NUM = r"([-+]?[\d.]++)"
 CAM_LINE = re.compile(
     rf"(?:N\d+ *)?(?:G0*([0-3]) *)?(?:X{_NUM} *)?(?:Y{_NUM} *)?(?:Z{_NUM} *)?(?:I{_NUM} *)?(?:J{_NUM} *)?"
-    rf"(?:F([\d.]+) *)?(;?) *\r?"
+    rf"(?:F([\d.]++) *)?(;?) *\r?"
 )
+CAM_LINES = re.compile("^" + CAM_LINE.pattern + "$", re.MULTILINE)
 """A plain motion block in canonical order.  The number pattern is loose on purpose
 (it is fast): a value that ``float()`` rejects (``1.2.3``, ``.``) sends the line to
 the general path, which reports it."""
@@ -85,8 +86,7 @@ def lower_straight(src: SourceFile, dialect: Dialect, sink: DiagnosticSink, opts
     it = Interpreter(dialect, sink, src.source_id, opts)
     text = src.text
     sid = src.source_id
-    fullmatch = CAM_LINE.fullmatch
-    find = text.find
+    finditer = CAM_LINES.finditer
     semicolon_ok = dialect.block_end == ";"
     new = object.__new__
     sp_id, sp_start, sp_end = _SPAN_SET
@@ -106,9 +106,20 @@ def lower_straight(src: SourceFile, dialect: Dialect, sink: DiagnosticSink, opts
     frame = it.frame
     k_int = k_pt = 1.0
     p = it.pos
-    while pos < n:
-        nl = find("\n", pos)
-        end = n if nl < 0 else nl
+    for m in finditer(text):
+        start = m.start()
+        if start >= n:
+            break
+        if start != pos:  # the lines in between do not match: general path
+            it.pos = p
+            if dirty:
+                _write_back(it, cur, feed_prog)
+                dirty = False
+            yield from _general(parser, it, src, pos, start, line_no)
+            line_no += text.count("\n", pos, start)
+            pos = start
+            stale = True
+        end = m.end()
         line_no += 1
         if stale:
             modal = it.modal
@@ -124,8 +135,7 @@ def lower_straight(src: SourceFile, dialect: Dialect, sink: DiagnosticSink, opts
             path = modal.path
             p = it.pos
             stale = False
-        m = fullmatch(text, pos, end) if ok and end - pos <= MAX_LINE_CHARS else None
-        if m is not None:
+        if ok and end - pos <= MAX_LINE_CHARS:
             g, xs, ys, zs, is_, js, fs, semi = m.groups()
             motion = cur if g is None else _MOTION_OF[g]
             if ((xs is not None or ys is not None or zs is not None) and (semicolon_ok or not semi)
@@ -196,6 +206,21 @@ def lower_straight(src: SourceFile, dialect: Dialect, sink: DiagnosticSink, opts
     it.pos = p
     if dirty:
         _write_back(it, cur, feed_prog)
+    if pos < n:
+        yield from _general(parser, it, src, pos, n, line_no)
+
+
+def _general(parser: Parser, it: Interpreter, src: SourceFile, pos: int, stop: int, line_no: int) -> Iterator[Command]:
+    """Lower the lines in ``src.text[pos:stop]`` through the grammar and the interpreter."""
+    text = src.text
+    while pos < stop:
+        nl = text.find("\n", pos, stop)
+        end = stop if nl < 0 else nl
+        line_no += 1
+        if end > pos:
+            for block in parser.blocks_of_line(src, pos, end, line_no):
+                yield from it.execute(block)
+        pos = end + 1
 
 
 def _write_back(it: Interpreter, motion: str, feed: float | None) -> None:
