@@ -20,6 +20,7 @@ For a single move this is the classic 7-phase S-curve (time ``L/v + v/A + A/J``)
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -44,18 +45,48 @@ class _Grid:
     pins: FloatArray  # positions where the path is at rest (besides both ends)
 
 
+TF_SHARES = (1.0, 0.5, 0.25, 0.125)
+FORCED_SHARE = 0.02
+
+
 def fir_profile(seg: Segments) -> Phases:
     ph, tf = unfiltered_profile(seg)
     return _filter(ph, tf, float(seg.s0[-1]))
 
 
 def unfiltered_profile(seg: Segments) -> tuple[Phases, float]:
-    """TOPP on the widened caps with the short peaks cut, and the filter width ``Tf``.
+    """The fastest of :func:`unfiltered_at` over the filter widths ``share * max A/J``.
 
-    Interior vertices whose cap is zero are rest points; the filtered profile of a part
-    from rest to rest lasts the unfiltered time plus ``Tf``.
+    Narrower widths are tried only when the widest one spends a noticeable share of the
+    time (:data:`FORCED_SHARE`) in the cruises of about ``Tf`` that the filter forces at
+    every speed minimum and cut peak — the only time a narrower filter can save.
     """
-    tf = float(np.max(seg.acap / seg.jcap))
+    tf_max = float(np.max(seg.acap / seg.jcap))
+    best = unfiltered_at(seg, tf_max)
+    ph, tf = best
+    forced = float(ph.dur[(ph.a0 == 0.0) & (ph.dur < 2 * tf)].sum()) + tf
+    if forced < FORCED_SHARE * (ph.end_time + tf):
+        return best
+    for share in TF_SHARES[1:]:
+        ph, tf = unfiltered_at(seg, tf_max * share)
+        if ph.end_time + tf < best[0].end_time + best[1]:
+            best = (ph, tf)
+    return best
+
+
+def unfiltered_at(seg: Segments, tf: float) -> tuple[Phases, float]:
+    """TOPP on the widened caps with the short peaks cut, for the filter width ``tf``.
+
+    The acceleration caps become ``min(acap, jcap * tf)``, so that the filter's jerk
+    ``A / tf`` stays within the jerk caps.  A narrow filter loses on long ramps (less
+    acceleration) and wins where the speed changes by little between close caps (a
+    short filter, narrow widening).  Interior vertices whose cap is zero are rest
+    points; the filtered profile of a part from rest to rest lasts the unfiltered time
+    plus ``tf``.
+    """
+    from dataclasses import replace
+
+    seg = replace(seg, acap=np.minimum(seg.acap, seg.jcap * tf))
     grid = _grid(seg, tf)
     ph = _topp(grid)
     for _ in range(MAX_CUT_ROUNDS):
@@ -169,28 +200,59 @@ def peak_cuts(ph: Phases, tf: float) -> FloatArray:
     jerk ``2A / Tf``.  The fix is the time-optimal one among profiles that follow the
     TOPP envelopes: the highest ``level`` at which the connected part of
     ``{v >= level}`` around the peak is at least ``level * tf`` long, so that cutting
-    it flat leaves a cruise of ``tf``.  Cutting only lowers the profile (every cap stays
-    met), needs no other change (the cut profile is TOPP's under the extra cap) and
-    creates no new peak; ``level`` is found by a vectorised bisection, the part's ends by
-    binary lifting over a sparse table of per-phase minimum speeds: no global re-runs.
+    it flat leaves a cruise of ``tf``.  The level is searched above the higher
+    neighbouring minimum first (the part is then the peak's own); only a peak too short
+    for that is cut lower, across its neighbours.  Cutting a level set only lowers the
+    profile (every cap stays met), needs no other change (the cut profile is TOPP's
+    under the extra cap) and creates no new peak.  Levels come from vectorised
+    bisections, the parts' ends from binary lifting over a sparse table of per-phase
+    minimum speeds: no global re-runs.
     """
     first, second = _flips(ph, tf)
     if first.size == 0:
         return np.zeros((0, 3))
     v_end = ph.v0 + ph.a0 * ph.dur
-    pmin = np.minimum(ph.v0, v_end)
-    tables = _min_tables(pmin)
-    lo = np.zeros(first.size)
-    hi = v_end[first].copy()
-    for _ in range(44):
-        mid = (lo + hi) / 2
-        s_a, s_b = _component(ph, tables, first, second, mid)
-        ok = s_b - s_a >= mid * tf
-        lo = np.where(ok, mid, lo)
-        hi = np.where(ok, hi, mid)
-    level = np.maximum(lo * (1 - 1e-9), 1e-9 * hi)
+    tables = _min_tables(np.minimum(ph.v0, v_end))
+    s_end = ph.s0 + ph.v0 * ph.dur + ph.a0 * ph.dur**2 / 2
+    m_l, m_r = _neighbour_minima(ph, v_end, s_end, first, second)
+    v_pk = v_end[first]
+
+    def own(level: FloatArray) -> np.ndarray:
+        s_a, s_b = _component(ph, tables, first, second, level)
+        return np.asarray(s_b - s_a >= level * tf)
+
+    # strictly above the neighbouring minima, or the part would run into the next peak
+    top = np.minimum(np.maximum(m_l, m_r) * (1 + 1e-7) + 1e-12, v_pk)
+    level = np.where(own(top), _bisect(own, top, v_pk), _bisect(own, np.zeros_like(v_pk), v_pk))
     s_a, s_b = _component(ph, tables, first, second, level)
     return np.stack([s_a, s_b, level], axis=1)
+
+
+def _bisect(ok: Callable[[FloatArray], np.ndarray], lo: FloatArray, hi: FloatArray) -> FloatArray:
+    """Largest level in ``[lo, hi]`` with ``ok`` (``ok`` holds at ``lo``, fails above some level)."""
+    lo, hi = lo.copy(), np.maximum(hi, lo)
+    for _ in range(44):
+        mid = (lo + hi) / 2
+        good = ok(mid)
+        lo = np.where(good, mid, lo)
+        hi = np.where(good, hi, mid)
+    out: FloatArray = np.maximum(lo, 1e-9 * hi)
+    return out
+
+
+def _neighbour_minima(ph: Phases, v_end: FloatArray, s_end: FloatArray, first: np.ndarray, second: np.ndarray
+                      ) -> tuple[FloatArray, FloatArray]:
+    """Speed of the minimum before each peak (end of the last braking phase) and after it
+    (start of the next accelerating phase); rest at the part's ends."""
+    dec = np.flatnonzero(ph.a0 < 0)
+    acc = np.flatnonzero(ph.a0 > 0)
+    i = np.searchsorted(dec, first) - 1
+    q = dec[np.maximum(i, 0)] if dec.size else np.zeros_like(first)
+    m_l = np.where(i >= 0, v_end[q], 0.0)
+    i = np.searchsorted(acc, second, side="right")
+    r = acc[np.minimum(i, acc.size - 1)] if acc.size else np.zeros_like(second)
+    m_r = np.where(i < acc.size, ph.v0[r], 0.0)
+    return m_l, m_r
 
 
 def _min_tables(values: FloatArray) -> list[FloatArray]:

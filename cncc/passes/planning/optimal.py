@@ -1,22 +1,33 @@
-"""-O3: jerk-limited time-optimal path profile over windows with CasADi/IPOPT.
+"""-O3: jerk-limited time-optimal path profile over overlapping windows with CasADi/IPOPT.
 
-Consumes the run's :class:`Segments` and the -O2 profile (used as the phase structure
-and the warm start); produces constant-jerk :class:`Phases`.
+Consumes a part's :class:`Segments` (rest to rest) and its -O2 profile; produces
+constant-jerk :class:`Phases` that are never slower than -O2's.
 
-The -O2 phases are split at the vertices, so each phase lies on one segment ``k``.
-Per window of at most :data:`WINDOW` phases the NLP is (multiple shooting, exact
-cubic integration): minimise ``sum h_p`` over durations ``h_p >= 0`` and jerks
-``j_p`` with states ``(s, v, a)`` at the knots, subject to ``|j_p| <= jcap_k``,
-``|a| <= acap_k`` at both ends (exact: ``a`` is linear), ``0 <= v <= vcap_k`` at both
-ends and the middle, ``v <= vvert_m`` and ``s = s_m`` at the knot that crosses vertex
-``m``.  Window ends keep the -O2 state, so windows solve independently.  The caps are
-the raw ones (no widening): -O3 optimises the same constraint model as -O2 without
--O2's filter.  A final uniform time scaling removes any excess of the velocity inside a
-phase (checked only at three points in the NLP); a window that IPOPT cannot solve
-keeps its -O2 phases (W0605).
+The -O2 phases, split at the vertices so that each lies on one segment ``k``, give the
+structure and the warm start.  Per window of at most :data:`WINDOW` phases the NLP is
+(multiple shooting, exact cubic integration)::
+
+    minimise  sum h_p   over durations h_p >= 0, jerks |j_p| <= jcap_k and the knot states
+    s, v, a:  s' = s + v h + a h^2/2 + j h^3/6,  v' = v + a h + j h^2/2,  a' = a + j h
+              0 <= v <= vcap_k at both ends and in the middle of each phase,
+              |a| <= acap_k at both ends (a is linear), v <= vvert_m and s = s_m at the
+              knot that crosses vertex m, the first and last knot fixed.
+
+Every constraint but the dynamics is a *bound*, so one compiled solver per window size
+serves all windows (the caps are bound values).  Windows overlap by :data:`OVERLAP`
+phases: only the first ``WINDOW - OVERLAP`` phases of a solution are kept and the next
+window starts from the state reached there, its end fixed to -O2's state further on, so
+improvements propagate.  The caps are the raw ones (no widening): -O3 optimises the
+constraint model of -O2 without -O2's filter.  After all windows the exact extremes of
+every phase (the velocity inside a phase is checked only at three points by the NLP)
+are measured and the whole part is slowed down by the tiny factor that removes any
+excess.  A window IPOPT cannot solve keeps its -O2 phases (W0605).
 """
 
 from __future__ import annotations
+
+from functools import lru_cache
+from typing import Any
 
 import numpy as np
 
@@ -28,96 +39,159 @@ from cncc.passes.planning.profile import Phases
 from cncc.passes.planning.segments import Segments
 from cncc.source import NO_SPAN
 
-WINDOW = 400
+Solution = tuple[FloatArray, FloatArray, list[FloatArray]]
+
+WINDOW = 96
+OVERLAP = 32
+MAX_ITER = 400
+MAX_CPU_S = 20.0
+_SOLVED = ("Solve_Succeeded", "Solved_To_Acceptable_Level")
 
 
 def optimise(seg: Segments, o2: Phases, sink: DiagnosticSink) -> Phases:
+    if seg.count < 2 or o2.t0.size < 3:
+        return o2
     ph = split_at(o2, seg.s0[1:-1])
     n = ph.t0.size
     s_end, v_end, a_end = eval_phase(ph, np.arange(n), ph.dur)
-    s_knot = np.concatenate([ph.s0, s_end[-1:]])
-    v_knot = np.concatenate([ph.v0, v_end[-1:]])
-    a_knot = np.concatenate([ph.a0, a_end[-1:]])
+    knots = [np.append(ph.s0, s_end[-1]), np.append(ph.v0, v_end[-1]), np.append(ph.a0, a_end[-1])]
     s_mid, _, _ = eval_phase(ph, np.arange(n), ph.dur / 2)
     k = np.clip(np.searchsorted(seg.s0, s_mid, side="right") - 1, 0, seg.count - 1)
-    vertex = np.full(n + 1, -1)
-    on_vertex = np.isclose(s_knot[:, None], seg.s0[None, 1:-1], rtol=0, atol=1e-9)
-    hit = on_vertex.any(axis=1)
-    vertex[hit] = np.argmax(on_vertex[hit], axis=1) + 1
-    h_all, j_all = ph.dur.copy(), ph.j.copy()
-    st = [s_knot[:-1].copy(), v_knot[:-1].copy(), a_knot[:-1].copy()]
-    for lo in range(0, n, WINDOW):
+    vertex = _vertex_of_knots(seg, knots[0])
+    h, j = ph.dur.copy(), ph.j.copy()
+    state = [x.copy() for x in knots]  # knot states of the result so far
+    lo, failed = 0, 0
+    prev: tuple[int, int, Solution] | None = None
+    while lo < n:
         hi = min(n, lo + WINDOW)
-        sol = _solve(seg, k[lo:hi], vertex[lo:hi + 1], s_knot[lo:hi + 1], v_knot[lo:hi + 1], a_knot[lo:hi + 1],
-                     h_all[lo:hi], j_all[lo:hi])
-        if sol is None:
-            sink.emit(dg.PLAN_FALLBACK, NO_SPAN, "-O3: IPOPT failed on a window; the -O2 profile is kept there")
+        sol = _solve_window(seg, k[lo:hi], vertex[lo:hi + 1], [x[lo:hi + 1] for x in knots],
+                            [x[lo] for x in state], h[lo:hi], j[lo:hi])
+        if not isinstance(sol, tuple):
+            # keep the previous window's solution to its end (where it meets -O2's state),
+            # then -O2's own phases up to this window's end
+            failed += sol == "failed"
+            resume = lo
+            if prev is not None:
+                _apply(prev[2], prev[0], lo, prev[1], h, j, state)
+                resume = prev[1]
+            h[resume:hi], j[resume:hi] = ph.dur[resume:hi], ph.j[resume:hi]
+            for i in range(3):
+                state[i][resume:hi + 1] = knots[i][resume:hi + 1]
+            prev, lo = None, max(hi, resume)
             continue
-        h_all[lo:hi], j_all[lo:hi] = sol[0], sol[1]
-        for i in range(3):
-            st[i][lo:hi] = sol[2][i][:-1]
-    return _scaled(h_all, j_all, st, ph.limit, seg, k)
+        keep = hi - lo if hi == n else max(1, hi - lo - OVERLAP)
+        _apply(sol, lo, lo, lo + keep, h, j, state)
+        prev = (lo, hi, sol)
+        lo += keep
+    if failed:
+        sink.emit(dg.PLAN_FALLBACK, NO_SPAN, f"-O3: IPOPT failed on {failed} window(s); -O2's profile is kept there")
+    out = _scaled(h, j, state, ph.limit, seg, k)
+    return out if out is not None and out.end_time <= o2.end_time else o2
 
 
-def _solve(seg: Segments, k: np.ndarray, vertex: np.ndarray, s0: FloatArray, v0: FloatArray, a0: FloatArray,
-           h_init: FloatArray, j_init: FloatArray
-           ) -> tuple[FloatArray, FloatArray, list[FloatArray]] | None:
+def _apply(sol: Solution, origin: int, lo: int, hi: int, h: FloatArray, j: FloatArray,
+           state: list[FloatArray]) -> None:
+    """Copy phases ``[lo, hi)`` (and their knots) of a window solved from phase ``origin``."""
+    a, b = lo - origin, hi - origin
+    h[lo:hi], j[lo:hi] = sol[0][a:b], sol[1][a:b]
+    for i in range(3):
+        state[i][lo:hi + 1] = sol[2][i][a:b + 1]
+
+
+def _vertex_of_knots(seg: Segments, s_knot: FloatArray) -> np.ndarray:
+    """Index of the interior vertex each knot sits on, or -1."""
+    inner = seg.s0[1:-1]
+    if inner.size == 0:
+        return np.full(s_knot.size, -1)
+    right = np.clip(np.searchsorted(inner, s_knot), 0, inner.size - 1)
+    left = np.maximum(right - 1, 0)
+    pick = np.where(np.abs(inner[right] - s_knot) <= np.abs(inner[left] - s_knot), right, left)
+    out: np.ndarray = np.where(np.abs(inner[pick] - s_knot) <= 1e-9, pick + 1, -1)
+    return out
+
+
+@lru_cache(maxsize=8)
+def _solver(n: int) -> Any:
     import casadi as ca
 
+    x = ca.SX.sym("x", 5 * n + 3)
+    h, j = x[:n], x[n:2 * n]
+    s, v, a = x[2 * n:3 * n + 1], x[3 * n + 1:4 * n + 2], x[4 * n + 2:]
+    h2 = h * h
+    g = ca.vertcat(
+        s[1:] - (s[:-1] + v[:-1] * h + a[:-1] * h2 / 2 + j * h2 * h / 6),
+        v[1:] - (v[:-1] + a[:-1] * h + j * h2 / 2),
+        a[1:] - (a[:-1] + j * h),
+        v[:-1] + a[:-1] * h / 2 + j * h2 / 8,
+    )
+    opts: dict[str, Any] = {
+        "print_time": False, "ipopt.print_level": 0, "ipopt.sb": "yes", "ipopt.max_iter": MAX_ITER,
+        "ipopt.max_cpu_time": MAX_CPU_S, "ipopt.tol": 1e-9, "ipopt.constr_viol_tol": 1e-10,
+        "ipopt.acceptable_tol": 1e-7, "ipopt.acceptable_constr_viol_tol": 1e-9,
+        "ipopt.mu_strategy": "adaptive", "ipopt.bound_relax_factor": 0.0}
+    return ca.nlpsol(f"o3_{n}", "ipopt", {"x": x, "f": ca.sum1(h), "g": g}, opts)
+
+
+def _solve_window(seg: Segments, k: np.ndarray, vertex: np.ndarray, o2: list[FloatArray], start: list[float],
+                  h0: FloatArray, j0: FloatArray) -> Solution | str:
+    """The window's solution, or ``"failed"`` / ``"no gain"``."""
     n = k.size
-    opti = ca.Opti()
-    h = opti.variable(n)
-    j = opti.variable(n)
-    s = opti.variable(n + 1)
-    v = opti.variable(n + 1)
-    a = opti.variable(n + 1)
     vc, ac, jc = seg.vcap[k], seg.acap[k], seg.jcap[k]
-    opti.subject_to(s[1:] == s[:-1] + v[:-1] * h + a[:-1] * h**2 / 2 + j * h**3 / 6)
-    opti.subject_to(v[1:] == v[:-1] + a[:-1] * h + j * h**2 / 2)
-    opti.subject_to(a[1:] == a[:-1] + j * h)
-    v_mid = v[:-1] + a[:-1] * h / 2 + j * h**2 / 8
-    opti.subject_to(opti.bounded(0, h, 10 * max(float(h_init.sum()), 1e-3)))
-    opti.subject_to(opti.bounded(-jc, j, jc))
-    for lo_hi, cap in ((v[:-1], vc), (v[1:], vc), (v_mid, vc)):
-        opti.subject_to(opti.bounded(0, lo_hi, cap))
-    opti.subject_to(opti.bounded(-ac, a[:-1], ac))
-    opti.subject_to(opti.bounded(-ac, a[1:], ac))
-    for node in np.flatnonzero(vertex >= 0):
-        m = int(vertex[node])
-        opti.subject_to(s[int(node)] == seg.s0[m])
-        opti.subject_to(v[int(node)] <= seg.vvert[m])
-    for var, val in ((s, s0), (v, v0), (a, a0)):
-        opti.subject_to(var[0] == val[0])
-        opti.subject_to(var[n] == val[-1])
-    opti.minimize(ca.sum1(h))
-    opti.set_initial(h, h_init)
-    opti.set_initial(j, j_init)
-    opti.set_initial(s, s0)
-    opti.set_initial(v, v0)
-    opti.set_initial(a, a0)
-    opti.solver("ipopt", {"print_time": False}, {"print_level": 0, "max_iter": 1500, "max_cpu_time": 30.0, "tol": 1e-9,
-                                                 "sb": "yes"})
+    v_knot = np.minimum(np.append(vc, vc[-1]), np.insert(vc, 0, vc[0]))
+    a_knot = np.minimum(np.append(ac, ac[-1]), np.insert(ac, 0, ac[0]))
+    on_v = vertex >= 0
+    v_knot = np.where(on_v, np.minimum(v_knot, seg.vvert[np.maximum(vertex, 0)]), v_knot)
+    s_lo, s_hi = np.full(n + 1, -np.inf), np.full(n + 1, np.inf)
+    s_lo[on_v] = s_hi[on_v] = seg.s0[vertex[on_v]]
+    v_lo, v_hi = np.zeros(n + 1), v_knot.copy()
+    a_lo, a_hi = -a_knot, a_knot.copy()
+    for arr_lo, arr_hi, val in ((s_lo, s_hi, (start[0], o2[0][-1])), (v_lo, v_hi, (start[1], o2[1][-1])),
+                                (a_lo, a_hi, (start[2], o2[2][-1]))):
+        arr_lo[0] = arr_hi[0] = val[0]
+        arr_lo[-1] = arr_hi[-1] = val[1]
+    if v_lo[0] > v_hi[0] * (1 + 1e-9) + 1e-12 or abs(a_lo[0]) > a_knot[0] * (1 + 1e-9) + 1e-9:
+        return "failed"  # the start state left by the previous window is outside this window's caps
+    h_max = 10.0 * max(float(h0.sum()), 1e-6)
+    lbx = np.concatenate([np.zeros(n), -jc, s_lo, v_lo, a_lo])
+    ubx = np.concatenate([np.full(n, h_max), jc, s_hi, v_hi, a_hi])
+    x0 = np.concatenate([h0, j0, o2[0], o2[1], o2[2]])
+    x0[2 * n] = start[0]
+    x0[3 * n + 1] = start[1]
+    x0[4 * n + 2] = start[2]
+    lbg = np.concatenate([np.zeros(3 * n), np.zeros(n)])
+    ubg = np.concatenate([np.zeros(3 * n), vc])
+    solver = _solver(n)
     try:
-        sol = opti.solve()
+        res = solver(x0=np.clip(x0, lbx, ubx), lbx=lbx, ubx=ubx, lbg=lbg, ubg=ubg)
     except RuntimeError:
-        return None
-    h_opt = np.maximum(np.array(sol.value(h), float).reshape(-1), 0.0)
-    if h_opt.sum() > h_init.sum():
-        return None
-    states = [np.array(sol.value(x), float).reshape(-1) for x in (s, v, a)]
-    return h_opt, np.array(sol.value(j), float).reshape(-1), states
+        return "failed"
+    status = str(solver.stats()["return_status"])
+    x = np.array(res["x"], float).reshape(-1)
+    g = np.array(res["g"], float).reshape(-1)
+    v_mid = g[3 * n:]
+    bad_mid = bool((v_mid < -1e-9).any() or (v_mid > vc * (1 + 1e-9) + 1e-12).any())
+    if not np.all(np.isfinite(x)) or np.abs(g[:3 * n]).max(initial=0.0) > 1e-7 or bad_mid:
+        return "failed" if status not in _SOLVED else "no gain"
+    h = np.maximum(x[:n], 0.0)
+    if h.sum() > h0.sum():
+        return "failed" if status not in _SOLVED else "no gain"
+    return h, x[n:2 * n], [x[2 * n:3 * n + 1], x[3 * n + 1:4 * n + 2], x[4 * n + 2:]]
 
 
 def _scaled(h: FloatArray, j: FloatArray, st: list[FloatArray], limit: np.ndarray, seg: Segments,
-            k: np.ndarray) -> Phases:
-    """Phases from the solved knot states; time scaled so no cap is exceeded inside a phase."""
-    s, v, a = st
+            k: np.ndarray) -> Phases | None:
+    """Phases from the knot states; time scaled so that no cap is exceeded inside a phase
+    (None if the path would run backwards somewhere)."""
+    s, v, a = (x[:-1] for x in st)
     v_end = v + a * h + j * h**2 / 2
     a_end = a + j * h
     with np.errstate(divide="ignore", invalid="ignore"):
         t_star = np.where(j != 0, -a / j, 0.0)
     inside = (t_star > 0) & (t_star < h)
-    v_peak = np.maximum(np.maximum(v, v_end), np.where(inside, v + a * t_star + j * t_star**2 / 2, 0))
+    v_in = np.where(inside, v + a * t_star + j * t_star**2 / 2, v)
+    v_peak = np.maximum(np.maximum(v, v_end), v_in)
+    if float(np.minimum(np.minimum(v, v_end), v_in).min()) < -1e-9:
+        return None
     ratio = max(1.0, float(np.max(v_peak / seg.vcap[k])))
     ratio = max(ratio, float(np.sqrt(np.max(np.maximum(np.abs(a), np.abs(a_end)) / seg.acap[k]))))
     ratio = max(ratio, float(np.cbrt(np.max(np.abs(j) / seg.jcap[k]))))
@@ -125,4 +199,5 @@ def _scaled(h: FloatArray, j: FloatArray, st: list[FloatArray], limit: np.ndarra
     h2 = h * lam
     keep = h2 > 1e-13
     t0 = np.concatenate([[0.0], np.cumsum(h2[keep])[:-1]])
-    return Phases(t0, h2[keep], s[keep], (v / lam)[keep], (a / lam**2)[keep], (j / lam**3)[keep], limit[keep])
+    return Phases(t0, h2[keep], s[keep], np.maximum(v / lam, 0.0)[keep], (a / lam**2)[keep], (j / lam**3)[keep],
+                  limit[keep])
