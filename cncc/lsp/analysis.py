@@ -12,7 +12,6 @@ on the configured machine) is :mod:`cncc.lsp.machine_check`.
 
 from __future__ import annotations
 
-import os
 import time
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
@@ -24,13 +23,13 @@ from cncc.dialects import Dialect, DialectError
 from cncc.ir import Command
 from cncc.ir.machine import MachineModel
 from cncc.lsp.config import Settings, open_dialect
+from cncc.lsp.pipeline import compile_commands
 from cncc.lsp.positions import LineIndex
 from cncc.lsp.scan import Comments, tokens
 from cncc.lsp.trace import VariableTrace
 from cncc.source import SourceMap, Span
 
 if TYPE_CHECKING:
-    from cncc.driver import Options as driver_Options
     from cncc.lsp.machine_check import MachineCheck
 
 CHECK_EVERY = 256  # commands between two budget checks
@@ -111,46 +110,8 @@ def _compile(a: Analysis, check: Callable[[], None]) -> None:
         return
     a.trace = VariableTrace()
     a.sources = SourceMap()
-    _collect(a, compile_commands(a, a.sources, sink, machine_coords=False, trace=a.trace), check)
-
-
-def compile_options(req: Request, dialect: Dialect) -> driver_Options:
-    """The driver's options for one document: its tables, and its folder and the workspace
-    root as places to look for called programs."""
-    from cncc import driver
-
-    settings = req.settings
-    folders = [os.path.dirname(req.path)] if req.path else []
-    if settings.root and settings.root not in folders:
-        folders.append(settings.root)
-    return driver.Options(inputs=[req.path] if req.path else [], dialect=dialect.name,
-                          offsets_file=settings.path(settings.offsets), tools_file=settings.path(settings.tools),
-                          repair_arcs=req.repair_arcs, include_dirs=folders,
-                          dialect_options=dict(settings.dialect_options))
-
-
-def compile_commands(a: Analysis, sources: SourceMap, sink: DiagnosticSink, machine_coords: bool,
-                     trace: VariableTrace | None = None) -> Iterator[Command]:
-    """The document through the front end and the path passes (as ``driver.front_end`` and
-    ``driver.path_passes`` do, with the executor's variable trace attached); in machine
-    coordinates for the planner when ``machine_coords``."""
-    from cncc import driver
-    from cncc.frontend import InterpOptions, lower
-
-    dialect, machine = a.dialect, a.machine
-    assert dialect is not None and machine is not None
-    src = sources.add(a.request.path or a.request.uri, a.request.text)
-    opts = compile_options(a.request, dialect)
-    work, lengths, radii = driver.load_tables(opts, sink)
-    refs = tuple(tuple(r) + (0.0,) * (6 - len(r)) for r in machine.reference_positions_mm) or ((0.0,) * 6,)
-    iopts = InterpOptions(work_offsets_mm=work, tool_lengths_mm=lengths, tool_radii_mm=radii,
-                          reference_mm=refs, block_delete=opts.block_delete,  # type: ignore[arg-type]
-                          strict=opts.strict)
-    macro = driver.macro_options(opts, sink, sources)
-    macro.trace = trace
-    if machine_coords:
-        opts.emit = "timing"  # a backend that reads machine coordinates
-    return driver.path_passes(lower(src, dialect, sink, iopts, macro), dialect, machine, opts, sink)
+    _collect(a, compile_commands(req, a.dialect, a.machine, a.sources, sink, machine_coords=False, trace=a.trace),
+             check)
 
 
 def _machine(settings: Settings, dialect: Dialect, sink: DiagnosticSink) -> MachineModel:

@@ -29,7 +29,8 @@ from cncc import diagnostics as dg
 from cncc.diagnostics import Diagnostic, DiagnosticSink, Severity
 from cncc.ir import Command
 from cncc.ir.machine import Axis, MachineModel
-from cncc.lsp.analysis import CHECK_EVERY, MAX_COMMANDS, Analysis, compile_commands
+from cncc.lsp.analysis import CHECK_EVERY, MAX_COMMANDS, Analysis
+from cncc.lsp.pipeline import compile_commands
 from cncc.source import SourceMap, Span
 
 if TYPE_CHECKING:
@@ -77,7 +78,8 @@ def machine_phase(a: Analysis, out: MachineCheck, check: Callable[[], None]) -> 
     out.step = "compiling in machine coordinates"
     sink = DiagnosticSink(max_count=5000)
     cmds: list[Command] = []
-    for c in compile_commands(a, out.sources, sink, machine_coords=True):
+    assert a.dialect is not None
+    for c in compile_commands(a.request, a.dialect, machine, out.sources, sink, machine_coords=True):
         if len(cmds) % CHECK_EVERY == 0:
             check()
         cmds.append(c)

@@ -1,0 +1,150 @@
+"""The compiler pipeline of an analysis: front end and path passes, as the driver builds them.
+
+``compile_commands(...)`` streams the document's commands like ``driver.front_end``
+followed by ``driver.path_passes``, with two differences for the editor:
+
+* the macro executor gets the server's variable trace (``MacroOptions.trace``);
+* in program coordinates (the first phase) the frame passes -- polar, scaling,
+  mirror, rotation, cutter compensation -- are started only at the first command
+  whose frame asks for one of them.  Before it, all they do to a command is to
+  start each motion where the previous one ended (a cycle's expanded moves, a
+  change of work offset); :func:`_relink` does just that.  The commands and the
+  diagnostics are the same (``tests/lsp/test_pipeline.py`` compares both pipelines
+  on a corpus); on a plain CAM program this saves about half of the first phase,
+  which is what the editor waits for.
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Iterable, Iterator
+from typing import TYPE_CHECKING
+
+from cncc.diagnostics import DiagnosticSink
+from cncc.dialects import Dialect
+from cncc.ir import Command, Frame
+from cncc.ir.frame import CompSide
+from cncc.ir.machine import MachineModel
+from cncc.source import SourceMap
+
+if TYPE_CHECKING:
+    from cncc.driver import Options
+    from cncc.lsp.analysis import Request
+    from cncc.lsp.trace import VariableTrace
+
+
+def compile_options(req: Request, dialect: Dialect) -> Options:
+    """The driver's options for one document: its tables, and its folder and the workspace
+    root as places to look for called programs."""
+    from cncc import driver
+
+    settings = req.settings
+    folders = [os.path.dirname(req.path)] if req.path else []
+    if settings.root and settings.root not in folders:
+        folders.append(settings.root)
+    return driver.Options(inputs=[req.path] if req.path else [], dialect=dialect.name,
+                          offsets_file=settings.path(settings.offsets), tools_file=settings.path(settings.tools),
+                          repair_arcs=req.repair_arcs, include_dirs=folders,
+                          dialect_options=dict(settings.dialect_options))
+
+
+def compile_commands(req: Request, dialect: Dialect, machine: MachineModel, sources: SourceMap,
+                     sink: DiagnosticSink, machine_coords: bool,
+                     trace: VariableTrace | None = None) -> Iterator[Command]:
+    """The document's commands after the path passes; in machine coordinates for the planner
+    when ``machine_coords``."""
+    from cncc import driver
+    from cncc.frontend import InterpOptions, lower
+
+    src = sources.add(req.path or req.uri, req.text)
+    opts = compile_options(req, dialect)
+    work, lengths, radii = driver.load_tables(opts, sink)
+    refs = tuple(tuple(r) + (0.0,) * (6 - len(r)) for r in machine.reference_positions_mm) or ((0.0,) * 6,)
+    iopts = InterpOptions(work_offsets_mm=work, tool_lengths_mm=lengths, tool_radii_mm=radii,
+                          reference_mm=refs, block_delete=opts.block_delete,  # type: ignore[arg-type]
+                          strict=opts.strict)
+    macro = driver.macro_options(opts, sink, sources)
+    macro.trace = trace
+    cmds = lower(src, dialect, sink, iopts, macro)
+    if machine_coords:
+        opts.emit = "timing"  # a backend that reads machine coordinates: offsets and tool lengths applied
+        return driver.path_passes(cmds, dialect, machine, opts, sink)
+    return _split(cmds, dialect, machine, opts, sink)
+
+
+def transforms(frame: Frame) -> bool:
+    """Whether a frame pass of the program-coordinate pipeline changes commands of this frame."""
+    return (frame.polar is not None or frame.scaling is not None or frame.mirror is not None
+            or frame.rotation is not None or frame.comp_side is not CompSide.OFF)
+
+
+def _split(cmds: Iterable[Command], dialect: Dialect, machine: MachineModel, opts: Options,
+           sink: DiagnosticSink) -> Iterator[Command]:
+    """Commands through the light pipeline until a frame needs the frame passes, then the
+    rest (from that command on) through the driver's whole pipeline."""
+    from cncc import driver
+
+    it = iter(cmds)
+    first: list[Command] = []
+
+    def plain() -> Iterator[Command]:
+        checked: set[int] = set()  # frames already seen to be plain (frames are shared records)
+        for c in it:
+            f = c.frame
+            if id(f) not in checked:
+                if transforms(f):
+                    first.append(c)
+                    return
+                checked.add(id(f))
+            yield c
+
+    yield from _light_passes(plain(), dialect, machine, opts, sink)
+    if first:
+        yield from driver.path_passes(_chain(first, it), dialect, machine, opts, sink)
+
+
+def _chain(head: list[Command], rest: Iterator[Command]) -> Iterator[Command]:
+    yield from head
+    yield from rest
+
+
+def _light_passes(cmds: Iterable[Command], dialect: Dialect, machine: MachineModel, opts: Options,
+                  sink: DiagnosticSink) -> Iterator[Command]:
+    """``driver.path_passes`` without the frame passes (same cycle expansion and arc check)."""
+    from cncc.passes import PassContext, run_pipeline
+    from cncc.passes.arc_check import ArcCheck
+    from cncc.passes.expand_cycles import ExpandCycles
+
+    ctx = PassContext(sink=sink, dialect=dialect, machine=machine)
+    tol_abs = float(dialect.option("arc_radius_tolerance_mm", ArcCheck.abs_tol_mm))
+    tol_rel = float(dialect.option("arc_radius_tolerance_rel", ArcCheck.rel_tol))
+    arc_check = ArcCheck(abs_tol_mm=max(tol_abs, ArcCheck.abs_tol_mm), rel_tol=tol_rel, repair=opts.repair_arcs)
+    expanded = run_pipeline([ExpandCycles()], cmds, ctx)
+    return arc_check.run(_relink(expanded), ctx)
+
+
+def _relink(cmds: Iterable[Command]) -> Iterator[Command]:
+    """Each motion starts where the previous one ended (what the frame passes do to commands
+    whose frames transform nothing); positions compared in program + offset coordinates."""
+    from cncc.ir import Arc, Linear, Rapid
+
+    last: tuple[float, ...] | None = None
+    for c in cmds:
+        if not isinstance(c, Rapid | Linear | Arc):
+            yield c
+            continue
+        f = c.frame
+        if last is not None:
+            o = f.total_offset_mm
+            start = (last[0] - o[0], last[1] - o[1], last[2] - o[2], last[3] - o[3], last[4] - o[4], last[5] - o[5])
+            if start != c.start:
+                if isinstance(c, Rapid):
+                    c = Rapid(c.span, f, start, c.end, c.motion, c.origin)
+                elif isinstance(c, Linear):
+                    c = Linear(c.span, f, start, c.end, c.feed_mm_min, c.motion, c.origin)
+                else:
+                    c = Arc(c.span, f, start, c.end, c.center, c.turns, c.plane, c.feed_mm_min, c.motion, c.origin)
+        o = f.total_offset_mm
+        e = c.end
+        last = (e[0] + o[0], e[1] + o[1], e[2] + o[2], e[3] + o[3], e[4] + o[4], e[5] + o[5])
+        yield c
