@@ -76,6 +76,7 @@ DEFAULT_FEED = _define("N0212", N, "no F programmed yet; the dialect's default f
 BAD_DWELL = _define("E0213", E, "a dwell time is missing or negative")
 TOO_MANY_M = _define("E0214", E, "more M codes in a block than the dialect allows")
 BAD_OFFSET_INDEX = _define("E0215", E, "a work, tool or reference index out of range")
+ARC_ZERO_RADIUS = _define("E0219", E, "an arc whose centre is its start point")
 G53_INCREMENTAL = _define("W0216", W, "G53 in incremental mode is ignored")
 AFTER_END = _define("N0217", N, "blocks after the program end are not executed")
 DECIMAL_P_DWELL = _define("W0218", W, "G04 P takes integer milliseconds; the fraction is dropped")
@@ -177,6 +178,8 @@ VERIFY_FEED = _define("E0614", E, "verify: the path speed exceeds the programmed
 VERIFY_SOFT_LIMIT = _define("E0615", E, "verify: an axis leaves its soft limits")
 VERIFY_CONTINUITY = _define("E0616", E, "verify: the trajectory jumps in position or time between phases")
 VERIFY_CORNER = _define("E0617", E, "verify: a velocity step at a phase boundary exceeds the corner rule")
+VERIFY_ACCEL_STEP = _define("E0618", E, "verify: an acceleration step at a phase boundary, spread over one "
+                                        "interpolation period, exceeds the jerk limit")
 
 # --- E069x: timing reports (cncc/backends/timing) ----------------------------------
 TIME_CLAMPED = _define("W0690", W, "a time too long or not finite for the timing report was clamped")

@@ -111,7 +111,8 @@ def lower_straight(src: SourceFile, dialect: Dialect, sink: DiagnosticSink, opts
         if start >= n:
             break
         if start != pos:  # the lines in between do not match: general path
-            it.pos = p
+            if not stale:
+                it.pos = p
             if dirty:
                 _write_back(it, cur, feed_prog)
                 dirty = False
@@ -160,6 +161,8 @@ def lower_straight(src: SourceFile, dialect: Dialect, sink: DiagnosticSink, opts
                         ci += float(is_) * (k_pt if "." in is_ else k_int)
                     if js is not None:
                         cj += float(js) * (k_pt if "." in js else k_int)
+                    if (is_ is not None or js is not None) and ci == p[0] and cj == p[1]:
+                        raise ValueError("zero-radius arc: the general path reports it")
                 except ValueError:
                     pass
                 else:
@@ -195,7 +198,8 @@ def lower_straight(src: SourceFile, dialect: Dialect, sink: DiagnosticSink, opts
                     pos = end + 1
                     continue
         if end > pos:
-            it.pos = p
+            if not stale:
+                it.pos = p
             if dirty:
                 _write_back(it, cur, feed_prog)
                 dirty = False
@@ -203,7 +207,8 @@ def lower_straight(src: SourceFile, dialect: Dialect, sink: DiagnosticSink, opts
                 yield from it.execute(block)
             stale = True
         pos = end + 1
-    it.pos = p
+    if not stale:
+        it.pos = p
     if dirty:
         _write_back(it, cur, feed_prog)
     if pos < n:

@@ -239,6 +239,9 @@ def _arc(it: Interpreter, ctx: BlockContext, end: Vec6, clockwise: bool) -> None
     else:
         o1 = rd.length_mm(w1) if w1 is not None else 0.0
         o2 = rd.length_mm(w2) if w2 is not None else 0.0
+        if abs(o1) < 1e-9 and abs(o2) < 1e-9:
+            it.emit_error(dg.ARC_ZERO_RADIUS, ctx.span, "the arc's centre is its start point (zero radius)")
+            return
         center = arcs.center_from_offsets(start, plane, o1, o2)
     f = feed_mm_min(it, ctx)
     if f is None:

@@ -113,3 +113,9 @@ def test_ten_megabyte_line() -> None:
 def test_huge_numbers_do_not_overflow() -> None:
     check("G01 X1" + "0" * 400 + " F1\n")
     check("G01 X1e5 F1\n")
+
+
+def test_zero_radius_arc_is_an_error() -> None:
+    for text in ("G02 I0 J0 F100\n", "G90 G03 X0 Y0 I0. F100\n", "G17 G02 X1. I0 J0 F100\n"):
+        r = compile_text(text)
+        assert [d.code for d in r.sink if d.severity is Severity.ERROR] == ["E0219"], text
