@@ -243,11 +243,12 @@ def with_line_map(cmds: Iterable[Command], sources: SourceMap) -> Iterator[Comma
 def path_passes(cmds: Iterable[Command], dialect: Dialect, machine: MachineModel, opts: Options,
                 sink: DiagnosticSink) -> Iterator[Command]:
     """The passes that change the programmed path (before lowering to machine coordinates)."""
+    from cncc.dialects.errors import controller_sink
     from cncc.passes import PassContext, run_pipeline
     from cncc.passes.arc_check import ArcCheck
     from cncc.passes.expand_cycles import ExpandCycles
 
-    ctx = PassContext(sink=sink, dialect=dialect, machine=machine)
+    ctx = PassContext(sink=controller_sink(sink, dialect.raw.get("errors")), dialect=dialect, machine=machine)
     tol_abs = float(dialect.option("arc_radius_tolerance_mm", ArcCheck.abs_tol_mm))
     tol_rel = float(dialect.option("arc_radius_tolerance_rel", ArcCheck.rel_tol))
     keep: frozenset[str] = frozenset()
@@ -360,7 +361,7 @@ def run_backend(cmds: Iterator[Command], src: SourceFile, sources: SourceMap, di
     if opts.emit == "canon":
         from cncc.backends.canon import emit_canon
 
-        return emit_canon(cmds, frame0)
+        return emit_canon(cmds, frame0, dialect.raw.get("canon"))
     if opts.emit == "ir":
         from cncc.backends.irdump import dump_ir
 

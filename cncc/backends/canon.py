@@ -12,8 +12,10 @@ driver runs the path passes but not the lowering to machine coordinates).
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Iterator
+from collections.abc import Iterable, Iterator, Mapping
+from typing import Any
 
+from cncc.backends.canon_format import CanonFormat
 from cncc.ir import (
     Arc,
     Aux,
@@ -67,8 +69,10 @@ def _offsets(frame: Frame) -> tuple[str, str]:
     return g5x, g92
 
 
-def canon_lines(cmds: Iterable[Command], *, initial_frame: Frame | None = None) -> Iterator[str]:
-    """Yield the trace lines (without newlines) for ``cmds``."""
+def canon_lines(cmds: Iterable[Command], *, initial_frame: Frame | None = None,
+                fmt: CanonFormat | None = None) -> Iterator[str]:
+    """Yield the trace lines (without newlines) for ``cmds``; ``fmt`` words the calls (default: cncc's)."""
+    fmt = fmt or CanonFormat()
     frame0 = initial_frame or Frame()
     g5x, g92 = _offsets(frame0)
     yield PREFIX + f"USE_LENGTH_UNITS({_UNITS[frame0.units]})"
@@ -78,7 +82,11 @@ def canon_lines(cmds: Iterable[Command], *, initial_frame: Frame | None = None) 
     yield PREFIX + "SET_FEED_REFERENCE(CANON_XYZ)"
     yield PREFIX + "ON_RESET()"
     last_g5x, last_g92 = g5x, g92
+    skip = 0  # commands folded into one call (RIGID_TAP, NURBS_FEED) that are not written
     for c in cmds:
+        if skip:
+            skip -= 1
+            continue
         frame = c.frame
         if not isinstance(c, SetMode):
             g5x, g92 = _offsets(frame)
@@ -98,45 +106,64 @@ def canon_lines(cmds: Iterable[Command], *, initial_frame: Frame | None = None) 
             case Dwell():
                 yield PREFIX + f"DWELL({_f(c.seconds)})"
             case FeedRate():
-                yield PREFIX + f"SET_FEED_RATE({_f(c.feed)})"
-            case SpindleSpeed():
-                yield PREFIX + f"SET_SPINDLE_SPEED({_f(c.rpm)})"
-            case Spindle():
-                yield PREFIX + {
-                    SpindleState.CW: "START_SPINDLE_CLOCKWISE()",
-                    SpindleState.CCW: "START_SPINDLE_COUNTERCLOCKWISE()",
-                    SpindleState.OFF: "STOP_SPINDLE_TURNING()",
-                    SpindleState.ORIENT: "ORIENT_SPINDLE(0.0000, 0)",
-                }[c.state]
-            case Coolant():
-                yield PREFIX + {CoolantState.FLOOD: "FLOOD_ON()", CoolantState.MIST: "MIST_ON()",
-                                CoolantState.OFF: "FLOOD_OFF()"}[c.state]
-                if c.state is CoolantState.OFF:
-                    yield PREFIX + "MIST_OFF()"
-            case SelectTool():
-                yield PREFIX + f"SELECT_TOOL({c.tool})"
-            case ToolChange():
-                yield PREFIX + "CHANGE_TOOL()"
-            case Stop():
-                yield PREFIX + {
-                    StopKind.PROGRAM_STOP: "PROGRAM_STOP()",
-                    StopKind.OPTIONAL_STOP: "OPTIONAL_PROGRAM_STOP()",
-                    StopKind.PROGRAM_END: "PROGRAM_END()",
-                    StopKind.END_REWIND: "PROGRAM_END()",
-                }[c.kind]
+                feed = c.feed / frame.units.mm_per_unit if fmt.feed_in_program_units else c.feed
+                yield PREFIX + f"SET_FEED_RATE({_f(feed)})"
+            case SetMode(name="rigid_tap" | "nurbs_feed") if fmt.has(c.name):
+                skip = int(c.value[-1])
+                yield from _lines(fmt, c.name, **_folded_fields(c))
+            case SetMode():
+                yield from _set_mode(c, last_g5x, last_g92, fmt)
+                last_g5x, last_g92 = _offsets(frame)
             case Comment():
                 yield PREFIX + f'COMMENT("{c.text}")'
             case Message():
                 yield PREFIX + f'MESSAGE("{c.text}")'
-            case SetMode():
-                yield from _set_mode(c, last_g5x, last_g92)
-                last_g5x, last_g92 = _offsets(frame)
             case Aux() | Wait():
                 pass
+            case _:
+                key, fields = _other(c)
+                yield from _lines(fmt, key, **fields)
+    yield from _lines(fmt, "end_of_trace")
 
 
-def _set_mode(c: SetMode, last_g5x: str, last_g92: str) -> Iterator[str]:
+def _lines(fmt: CanonFormat, key: str, **fields: Any) -> Iterator[str]:
+    for line in fmt.lines(key, **fields):
+        yield PREFIX + line
+
+
+def _other(c: Command) -> tuple[str, dict[str, Any]]:
+    """The template key and fields of a command that is not a move or a mode."""
+    match c:
+        case SpindleSpeed():
+            return "spindle_speed", {"rpm": float(c.rpm)}
+        case Spindle():
+            return {SpindleState.CW: "spindle_cw", SpindleState.CCW: "spindle_ccw", SpindleState.OFF: "spindle_off",
+                    SpindleState.ORIENT: "spindle_orient"}[c.state], {}
+        case Coolant():
+            return {CoolantState.FLOOD: "flood_on", CoolantState.MIST: "mist_on",
+                    CoolantState.OFF: "coolant_off"}[c.state], {}
+        case SelectTool():
+            return "select_tool", {"tool": c.tool}
+        case ToolChange():
+            return "tool_change", {"tool": c.tool}
+        case Stop():
+            return {StopKind.PROGRAM_STOP: "program_stop", StopKind.OPTIONAL_STOP: "optional_stop",
+                    StopKind.PROGRAM_END: "program_end", StopKind.END_REWIND: "program_end_rewind"}[c.kind], {}
+    return "none", {}
+
+
+def _folded_fields(c: SetMode) -> dict[str, Any]:
+    k = c.frame.units.mm_per_unit
+    if c.name == "rigid_tap":  # value: (end Vec6, commands folded)
+        end = c.value[0]
+        return {"x": end[0] / k, "y": end[1] / k, "z": end[2] / k}
+    points, order, _ = c.value  # nurbs_feed: (control points, order, commands folded)
+    return {"points": points, "order": order}
+
+
+def _set_mode(c: SetMode, last_g5x: str, last_g92: str, fmt: CanonFormat) -> Iterator[str]:
     frame = c.frame
+    k = frame.units.mm_per_unit
     if c.name == "plane":
         yield PREFIX + f"SELECT_PLANE({_PLANES[frame.plane]})"
     elif c.name == "units":
@@ -148,19 +175,31 @@ def _set_mode(c: SetMode, last_g5x: str, last_g92: str) -> Iterator[str]:
         if g92 != last_g92 or c.name != "g5x_offset":
             yield PREFIX + g92
     elif c.name == "tool_length_offset":
-        z = frame.tool_length_mm / frame.units.mm_per_unit
-        rest = ", ".join(["0.0000"] * 6)
-        yield PREFIX + f"USE_TOOL_LENGTH_OFFSET(0.0000, 0.0000, {_f(z)}, {rest})"
-    elif c.name == "path_mode":  # value: a PathMode, or (mode, P tolerance mm, Q naive-CAM mm | None) (G64 P Q)
+        yield from _lines(fmt, "tool_length_offset", z=frame.tool_length_mm / k)
+    elif c.name == "xy_rotation":
+        yield from _lines(fmt, "xy_rotation", deg=float(c.value))
+    elif c.name in ("path_mode", "cycle_path_mode"):  # value: PathMode or (mode, P mm, Q naive-CAM mm | None)
         mode_v, tol_mm, naive_mm = c.value if isinstance(c.value, tuple) else (c.value, 0.0, None)
-        mode = {PathMode.EXACT_STOP: "CANON_EXACT_STOP", PathMode.EXACT_PATH: "CANON_EXACT_PATH"}.get(
-            mode_v, "CANON_CONTINUOUS")
-        k = frame.units.mm_per_unit
-        yield PREFIX + f"SET_MOTION_CONTROL_MODE({mode}, {_f(tol_mm / k)})"
+        key = {PathMode.EXACT_STOP: "motion_exact_stop", PathMode.EXACT_PATH: "motion_exact_path"}.get(
+            mode_v, "motion_continuous")
+        yield from _lines(fmt, key, tol=tol_mm / k)
         if naive_mm is not None:
-            yield PREFIX + f"SET_NAIVECAM_TOLERANCE({_f(naive_mm / k)})"
+            yield from _lines(fmt, "naivecam_tolerance", tol=naive_mm / k)
     elif c.name == "feed_mode":
-        yield PREFIX + f"SET_FEED_MODE({1 if c.value == 'per_rev' else 0})"
+        yield from _lines(fmt, "feed_mode", mode=1 if c.value == "per_rev" else 0)
+    elif c.name == "spindle_sync":  # value: pitch in mm per revolution, 0 to end the synchronisation
+        if c.value:
+            yield from _lines(fmt, "spindle_sync_on", pitch=float(c.value) / k)
+        else:
+            yield from _lines(fmt, "spindle_sync_off")
+    elif c.name == "tool_table":  # value: (tool, length mm, diameter mm[, (x mm, front, back, orientation)])
+        tool, z_mm, dia_mm = c.value[:3]
+        x_mm, front, back, orient = c.value[3] if len(c.value) > 3 else (0.0, 0.0, 0.0, 0)
+        u = 25.4 if fmt.tool_table_inch else 1.0
+        yield from _lines(fmt, "tool_table_entry", tool=tool, x=x_mm / u, z=z_mm / u, diameter=dia_mm / u,
+                          front=float(front), back=float(back), orientation=orient)
+    elif c.name == "spindle_mode":
+        yield from _lines(fmt, "spindle_mode", css_max=float(c.value or 0.0))
 
 
 def _arc(c: Arc) -> str:
@@ -173,7 +212,8 @@ def _arc(c: Arc) -> str:
     return "ARC_FEED(" + ", ".join(args) + ")"
 
 
-def emit_canon(cmds: Iterable[Command], initial_frame: Frame | None = None) -> Iterator[str]:
-    """Lines with newlines, for writers."""
-    for line in canon_lines(cmds, initial_frame=initial_frame):
+def emit_canon(cmds: Iterable[Command], initial_frame: Frame | None = None,
+               table: Mapping[str, Any] | None = None) -> Iterator[str]:
+    """Lines with newlines, for writers; ``table`` is the dialect's ``[canon]`` table."""
+    for line in canon_lines(cmds, initial_frame=initial_frame, fmt=CanonFormat(table)):
         yield line + "\n"

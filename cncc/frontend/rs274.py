@@ -40,6 +40,10 @@ class Rs274State:
     inverse_time: bool = False  # G93
     g92_saved_mm: Vec6 = ZERO6  # parameters 5211-5216 (G92.2 keeps them, G92.3 restores)
     stored_mm: dict[int, Vec6] = field(default_factory=dict)  # G28 (1) / G30 (2) in machine coordinates
+    g5_pq_mm: tuple[float, float] = (0.0, 0.0)  # P, Q of the last G5 (its end tangent)
+    nurbs: list[tuple[float, float, float]] = field(default_factory=list)  # G5.2 control points x, y, weight
+    nurbs_order: int = 3
+    naive_mm: float = 0.0  # G64 Q (the naive-CAM tolerance in force)
 
 
 _STATES: WeakKeyDictionary[Interpreter, Rs274State] = WeakKeyDictionary()
@@ -63,6 +67,7 @@ def _set_path(it: Interpreter, ctx: BlockContext, mode: PathMode, tol_mm: float 
     new = it.intern_motion(replace(it.modal.path, mode=mode, blend_tolerance_mm=tol_mm))
     it.modal = it.modal.with_(path=new)
     value = (mode, tol_mm or 0.0, naive_mm) if mode is PathMode.CONTINUOUS else (mode, 0.0, None)
+    state(it).naive_mm = naive_mm or 0.0
     ctx.out.append(SetMode(ctx.span, it.frame, "path_mode", value))
 
 
@@ -126,14 +131,42 @@ ops.BLOCK_HOOKS.append(_absolute_centres)
 
 
 # ---- tool length -------------------------------------------------------------------------------
+def shift_z(it: Interpreter, old_mm: float) -> None:
+    """LinuxCNC applies a tool length offset without moving: the program Z of the unmoved
+    tool changes by the change of the offset."""
+    d = it.frame.tool_length_mm - old_mm
+    if d:
+        p = it.pos
+        it.pos = (p[0], p[1], p[2] - d, p[3], p[4], p[5])
+
+
 @handler("length_dynamic")
 def _g43_1(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     ctx.axis_used = True
     zw = ctx.words.get("Z")
     value = it.reader.length_mm(zw) if zw is not None else 0.0
-    if value != it.frame.tool_length_mm:
+    old = it.frame.tool_length_mm
+    if value != old:
         it.set_frame(replace(it.frame, tool_length_mm=value, tool_length_index=0))
         ctx.out.append(SetMode(ctx.span, it.frame, "tool_length_offset", value))
+        shift_z(it, old)  # the Z word is the offset, not a move
+
+
+# ---- G41.1 / G42.1: cutter compensation with the diameter in D --------------------------------
+@handler("comp_left_dynamic", "comp_right_dynamic")
+def _g41_1(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
+    from cncc.ir import CompSide
+
+    dw = ctx.words.get("D")
+    if dw is None or dw.value < 0:
+        it.emit_error(dg.TRANSFORM_WORDS, ctx.span, f"{c.name} needs the tool diameter D (not negative)")
+        return
+    side = CompSide.LEFT if c.op == "comp_left_dynamic" else CompSide.RIGHT
+    radius = it.reader.length_mm(dw) / 2.0
+    f = it.frame
+    if (side, radius) != (f.comp_side, f.comp_radius_mm):
+        it.set_frame(replace(f, comp_side=side, comp_radius_mm=radius, comp_index=0))
+        ctx.out.append(SetMode(ctx.span, it.frame, "cutter_comp", side))
 
 
 # ---- G92.1 / G92.2 / G92.3 -------------------------------------------------------------------
@@ -281,3 +314,6 @@ def _path_length_mm(it: Interpreter, ctx: BlockContext, end: Vec6, motion: str) 
 
 ops.BLOCK_HOOKS.append(_inverse_time_feed)
 
+
+from cncc.frontend import rs274_curves as _curves  # noqa: E402,F401  (G5, G5.1, G5.2/G5.3)
+from cncc.frontend import rs274_sync as _sync  # noqa: E402,F401  (G33, G33.1)

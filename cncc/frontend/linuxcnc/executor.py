@@ -18,41 +18,21 @@ from collections.abc import Iterator
 from dataclasses import dataclass, field
 
 from cncc import diagnostics as dg
-from cncc.diagnostics import DiagnosticSink, Related, Severity
+from cncc.diagnostics import DiagnosticSink, Related
 from cncc.dialects import Dialect
+from cncc.dialects.errors import ControllerSink, ControllerTexts
 from cncc.frontend.interp import Interpreter
 from cncc.frontend.linuxcnc.builder import oword_of
 from cncc.frontend.linuxcnc.evaluate import EvalError, Evaluator, Parameters, Scope
 from cncc.frontend.linuxcnc.flow import FlowIndex
+from cncc.frontend.linuxcnc.report import Before, Reporter
 from cncc.frontend.parser import Parser
 from cncc.frontend.syntax import Assign, Block, CommentItem, Word
-from cncc.ir import Command, Comment, Message
+from cncc.ir import Command, Message
 from cncc.source import SourceFile, Span
 
 _MESSAGE = re.compile(r"^\(\s*(MSG|DEBUG|PRINT)\s*,(.*)\)$", re.IGNORECASE | re.DOTALL)
 _PARAM_IN_TEXT = re.compile(r"#\s*<[^>]*>|#\d+")
-_DETAIL = re.compile(r"\b([A-Z])\b")
-
-
-class ControllerSink(DiagnosticSink):
-    """Forwards to the driver's sink with the controller's error texts; counts errors."""
-
-    def __init__(self, inner: DiagnosticSink, texts: dict[str, str]) -> None:
-        super().__init__()
-        self.inner, self.texts, self.errors = inner, texts, 0
-
-    def emit(self, code: str, span: Span, message: str, related: tuple[Related, ...] = (),
-             severity: Severity | None = None, detail: str = "") -> None:
-        text = self.texts.get(code)
-        if text is not None:
-            if "{0}" in text:
-                m = _DETAIL.search(message)
-                text = text.format(detail or (m.group(1) if m else "?"))
-            message = f"{text} ({message})"
-        info = dg.CODES.get(code)
-        if (severity or (info.severity if info else Severity.ERROR)) is Severity.ERROR:
-            self.errors += 1
-        self.inner.emit(code, span, message, related, severity)
 
 
 @dataclass(slots=True)
@@ -74,7 +54,7 @@ class LinuxcncExecutor:
     def __init__(self, dialect: Dialect, sink: DiagnosticSink, it: Interpreter, parser: Parser,
                  include_dirs: tuple[str, ...] = (), max_steps: int = 5_000_000) -> None:
         self.dialect = dialect
-        self.sink = ControllerSink(sink, {str(k): str(v) for k, v in dialect.raw.get("errors", {}).items()})
+        self.sink = ControllerSink(sink, ControllerTexts(dialect.raw.get("errors", {})))
         it.sink = self.sink
         self.it = it
         self.parser = parser
@@ -87,6 +67,7 @@ class LinuxcncExecutor:
         self.comments = {str(k): str(v) for k, v in dialect.raw.get("canon_comments", {}).items()}
         if not dialect.option("interpreter_comments", True):
             self.comments = {}
+        self.reporter = Reporter(it, self.comments)
         self.files: dict[str, FlowIndex] = {}
         self.stack: list[Frame] = []
         self.out: list[Command] = []
@@ -187,25 +168,12 @@ class LinuxcncExecutor:
         if not words and not comments:
             return
         nc = Block(block.line, block.start, block.end, words, comments, (), 0, block.percent)
-        before = len(self.out)
+        at = len(self.out)
+        before = Before.of(self.it)
+        if not self.reporter.allowed(Span(self.it.source_id, block.start, block.end), words):
+            return
         self.out.extend(self.it.execute(nc))
-        if self.comments:
-            self._interpreter_comments(block, words, before)
-
-    def _interpreter_comments(self, block: Block, words: tuple[Word, ...], at: int) -> None:
-        texts = []
-        for w in words:
-            if w.letter != "G":
-                continue
-            c = self.dialect.code("G", round(w.value * 10))
-            key = {"comp_off": "comp_off", "comp_left": "comp_left", "comp_right": "comp_right",
-                   "comp_left_dynamic": "comp_left", "comp_right_dynamic": "comp_right",
-                   "inverse_time": "inverse_time", "feed_per_min_rs274": "per_min",
-                   "feed_per_rev_rs274": "per_rev"}.get(c.op if c else "", "")
-            if key in self.comments:
-                texts.append(self.comments[key])
-        span = Span(self.it.source_id, block.start, block.end)
-        self.out[at:at] = [Comment(span, self.it.frame, t) for t in texts]
+        self.reporter.after_block(Span(self.it.source_id, block.start, block.end), words, self.out, at, before)
 
     def _value_word(self, w: Word) -> Word:
         if w.expr is None:

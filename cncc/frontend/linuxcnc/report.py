@@ -1,0 +1,309 @@
+"""What LinuxCNC's interpreter reports around a block that the shared interpreter does not.
+
+The shared :class:`~cncc.frontend.interp.Interpreter` emits a mode change only when
+the mode changes.  LinuxCNC's interpreter calls the canonical functions for every
+such code it reads, and adds calls of its own.  :func:`after_block` edits the IR of
+one executed block (``out[at:]``) so that the canon trace reads as ``rs274 -g``'s:
+
+- ``COMMENT("interpreter: ...")`` lines (the dialect's ``[canon_comments]``): feed
+  mode, cutter compensation, G80, G98/G99 every time; distance modes on a change;
+  a work-system code that does not change the system;
+- ``SELECT_PLANE``/``USE_LENGTH_UNITS`` for G17-G19/G20-G21 even when unchanged;
+- G93/G94/G95 every time, G94/G95 also setting the feed rate to 0 (F must follow);
+- ``SET_XY_ROTATION`` after a work-system change;
+- canned cycles: ``CANON_EXACT_PATH`` for the cycle and the path mode restored after
+  it; a start below R first rises to R, which becomes the cycle's initial level;
+- M2/M30: the resets (G54, XY plane, units-per-minute feed 0, spindle stop, coolant
+  off) before ``PROGRAM_END``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+from typing import TYPE_CHECKING
+
+from cncc import diagnostics as dg
+from cncc.frontend.syntax import Word
+from cncc.ir import (
+    Command,
+    Comment,
+    CompSide,
+    Coolant,
+    CoolantState,
+    Cycle,
+    Dwell,
+    FeedRate,
+    PathMode,
+    Plane,
+    Rapid,
+    SelectTool,
+    SetMode,
+    Spindle,
+    SpindleSpeed,
+    SpindleState,
+    Stop,
+    StopKind,
+    ToolChange,
+    Vec6,
+)
+from cncc.source import Span
+
+if TYPE_CHECKING:
+    from cncc.frontend.interp import Interpreter
+
+# op -> [canon_comments] key, reported every time the code is read
+_ALWAYS = {"comp_off": "comp_off", "comp_left": "comp_left", "comp_right": "comp_right",
+           "comp_left_dynamic": "comp_left", "comp_right_dynamic": "comp_right",
+           "inverse_time": "inverse_time", "feed_per_min_rs274": "per_min", "feed_per_rev_rs274": "per_rev",
+           "motion_off": "motion_none", "return_initial": "retract_old_z", "return_r": "retract_r_plane"}
+_FEED_MODES = {"inverse_time": "inverse_time", "feed_per_min_rs274": "per_min", "feed_per_rev_rs274": "per_rev"}
+
+
+@dataclass(frozen=True, slots=True)
+class Before:
+    """The interpreter's modes before a block."""
+
+    incremental: bool
+    arc_absolute: bool
+    work_index: int
+    tool_length_mm: float
+
+    @staticmethod
+    def of(it: Interpreter) -> Before:
+        from cncc.frontend.rs274 import state
+
+        return Before(it.modal.incremental, state(it).arc_absolute, it.frame.work_index, it.frame.tool_length_mm)
+
+
+@dataclass(slots=True)
+class Reporter:
+    """Per-program state of the reports (coolant in force) and the block editor."""
+
+    it: Interpreter
+    comments: dict[str, str]
+    flood: bool = False
+    mist: bool = False
+
+    def allowed(self, span: Span, words: tuple[Word, ...]) -> bool:
+        """LinuxCNC's checks of a block against the state before it (an error: not run)."""
+        it = self.it
+        planes = {"plane_xy": Plane.XY, "plane_zx": Plane.ZX, "plane_yz": Plane.YZ}
+        for w in words:
+            c = it.dialect.code("G", round(w.value * 10)) if w.letter == "G" else None
+            if c is not None and c.op in planes and it.frame.comp_side is not CompSide.OFF \
+                    and planes[c.op] is not it.frame.plane:
+                it.emit_error(dg.COMP_PLANE_CHANGE, span, f"{c.name}: the plane cannot change while cutter "
+                                                          "compensation is on")
+                return False
+        return True
+
+    def after_block(self, span: Span, words: tuple[Word, ...], out: list[Command], at: int, before: Before) -> None:
+        it = self.it
+        ops = [c.op for c in (it.dialect.code("G", round(w.value * 10)) for w in words if w.letter == "G") if c]
+        added: list[tuple[int, Command]] = [(_COMMENT_STAGE[k], Comment(span, it.frame, self.comments[k]))
+                                            for k in self._comment_keys(ops, before) if k in self.comments]
+        added += self._repeated_modes(span, ops, out[at:])
+        stages = {id(cmd): stage for stage, cmd in added}
+        end = next((i for i in range(at, len(out)) if _stage(out[i]) >= 20), len(out))
+        block = sorted(out[at:end], key=lambda c: _stage(c, stages))  # stable: LinuxCNC's order of execution
+        for stage, cmd in sorted(added, key=lambda sc: sc[0]):
+            _place(block, 0, stage, cmd, stages)
+        out[at:end] = block
+        self._feed_modes(span, ops, out, at, words)
+        self._tool_length(span, ops, out, at, words, before)
+        if "work" in ops:
+            self._after_work_select(out, at)
+        self._cycles(out, at)
+        self._program_end(out, at)
+        self._track_coolant(out[at:])
+
+    def _comment_keys(self, ops: list[str], before: Before) -> list[str]:
+        from cncc.frontend.rs274 import state
+
+        it = self.it
+        keys = [_ALWAYS[op] for op in ops if op in _ALWAYS]
+        if it.modal.incremental != before.incremental:
+            keys.append("distance_incremental" if it.modal.incremental else "distance_absolute")
+        if state(it).arc_absolute != before.arc_absolute:
+            keys.append("ijk_absolute" if state(it).arc_absolute else "ijk_incremental")
+        if "work" in ops and it.frame.work_index == before.work_index:
+            keys.append("same_system")
+        return keys
+
+    def _repeated_modes(self, span: Span, ops: list[str], out: list[Command]) -> list[tuple[int, Command]]:
+        """SELECT_PLANE / USE_LENGTH_UNITS for a plane or units code that changed nothing."""
+        it = self.it
+        names = {c.name for c in out if isinstance(c, SetMode)}
+        extra: list[tuple[int, Command]] = []
+        if any(op in ("plane_xy", "plane_zx", "plane_yz") for op in ops) and "plane" not in names:
+            extra.append((11, SetMode(span, it.frame, "plane", it.frame.plane)))
+        if any(op in ("inch", "metric") for op in ops) and "units" not in names:
+            extra.append((12, SetMode(span, it.frame, "units", it.frame.units)))
+        return extra
+
+    def _feed_modes(self, span: Span, ops: list[str], out: list[Command], at: int, words: tuple[Word, ...]) -> None:
+        """G93/G94/G95: SET_FEED_MODE every time; G94/G95 reset the feed rate to 0 (F follows)."""
+        op = next((o for o in ops if o in _FEED_MODES), None)
+        if op is None:
+            return
+        it = self.it
+        i = next((k for k in range(at, len(out)) if _is_mode(out[k], "feed_mode")), None)
+        if i is None:
+            i = _place(out, at, 2, SetMode(span, it.frame, "feed_mode", _FEED_MODES[op]), {})
+        if op != "inverse_time":
+            out.insert(i + 1, FeedRate(span, it.frame, 0.0, op == "feed_per_rev_rs274"))
+            if not any(w.letter == "F" for w in words):
+                it.modal = it.modal.with_(feed=None)
+
+    def _tool_length(self, span: Span, ops: list[str], out: list[Command], at: int, words: tuple[Word, ...],
+                     before: Before) -> None:
+        """G43/G49 report the offset every time; without a Z word the program Z follows the offset
+        (LinuxCNC does not move the tool).  A move in the same block is made before that shift."""
+        from cncc.frontend.rs274 import shift_z
+
+        if not any(op in ("length_plus", "length_off") for op in ops):
+            return
+        if not any(_is_mode(c, "tool_length_offset") for c in out[at:]):
+            _place(out, at, 14, SetMode(span, self.it.frame, "tool_length_offset", self.it.frame.tool_length_mm), {})
+        if not any(w.letter == "Z" for w in words):
+            shift_z(self.it, before.tool_length_mm)
+
+    def _after_work_select(self, out: list[Command], at: int) -> None:
+        """A work-system change reports the G92 offset and the XY rotation after the G5x offset."""
+        for k in range(len(out) - 1, at - 1, -1):
+            c = out[k]
+            if isinstance(c, SetMode) and c.name == "g5x_offset":
+                out[k + 1:k + 1] = [SetMode(c.span, c.frame, "g92_offset", c.frame.g92_offset_mm),
+                                    SetMode(c.span, c.frame, "xy_rotation", 0.0)]
+
+    # ---- canned cycles
+    def _cycles(self, out: list[Command], at: int) -> None:
+        from cncc.frontend.rs274 import state
+
+        k = at
+        while k < len(out):
+            c = out[k]
+            if not isinstance(c, Cycle):
+                k += 1
+                continue
+            pre: list[Command] = []
+            c, rise = self._rise_to_r(c)
+            if rise is not None:
+                pre.append(rise)
+            path = self.it.modal.path
+            post: list[Command] = []
+            if path.mode is not PathMode.EXACT_PATH:
+                pre.append(SetMode(c.span, c.frame, "cycle_path_mode", PathMode.EXACT_PATH))
+                value = (path.mode, path.blend_tolerance_mm or 0.0,
+                         state(self.it).naive_mm if path.mode is PathMode.CONTINUOUS else None)
+                post.append(SetMode(c.span, c.frame, "cycle_path_mode", value))
+            out[k:k + 1] = [*pre, c, *post]
+            k += len(pre) + 1 + len(post)
+
+    def _rise_to_r(self, c: Cycle) -> tuple[Cycle, Rapid | None]:
+        """A cycle started below R rises to R first; R is then its initial (G98) level."""
+        from cncc.frontend import cycles
+
+        n = c.axis
+        if c.kind.value == "back_bore" or c.start[n] >= c.r_mm:
+            return c, None
+        up = _with(c.start, n, c.r_mm)
+        data = cycles.cycle_data(self.it)
+        if data is not None:  # later blocks of this cycle keep R as their initial level
+            cycles._DATA[self.it] = replace(data, initial_mm=c.r_mm)
+        rise = Rapid(c.span, c.frame, c.start, up, c.motion, c.code)
+        return replace(c, start=up, initial_mm=c.r_mm), rise  # the holes end at R (G99) or max(start, R) = R
+
+    # ---- M2 / M30
+    def _program_end(self, out: list[Command], at: int) -> None:
+        k = next((i for i in range(at, len(out)) if _is_end(out[i])), None)
+        if k is None:
+            return
+        it, span = self.it, out[k].span
+        resets: list[Command] = []
+        g54 = it.options.work_offsets_mm.get(1, (0.0,) * 6)
+        it.set_frame(replace(it.frame, work_index=1, work_offset_mm=g54))
+        resets += [SetMode(span, it.frame, "g5x_offset", 1), SetMode(span, it.frame, "xy_rotation", 0.0)]
+        if it.frame.plane is not Plane.XY:
+            it.set_frame(replace(it.frame, plane=Plane.XY))
+            resets.append(SetMode(span, it.frame, "plane", Plane.XY))
+        resets += [SetMode(span, it.frame, "feed_mode", "per_min"), FeedRate(span, it.frame, 0.0),
+                   Spindle(span, it.frame, SpindleState.OFF, 0.0), SetMode(span, it.frame, "spindle_mode", 0.0)]
+        if self.flood or self.mist:
+            resets.append(Coolant(span, it.frame, CoolantState.OFF))
+        out[k:k + 1] = [*resets, replace(out[k], frame=it.frame)]
+
+    def _track_coolant(self, out: list[Command]) -> None:
+        for c in out:
+            if isinstance(c, Coolant):
+                if c.state is CoolantState.OFF:
+                    self.flood = self.mist = False
+                elif c.state is CoolantState.FLOOD:
+                    self.flood = True
+                else:
+                    self.mist = True
+
+
+# The stage of LinuxCNC's order of execution at which each report is made.
+_COMMENT_STAGE = {"inverse_time": 2, "per_min": 2, "per_rev": 2, "comp_off": 13, "comp_left": 13, "comp_right": 13,
+                  "same_system": 15, "distance_absolute": 17, "distance_incremental": 17, "ijk_absolute": 17,
+                  "ijk_incremental": 17, "retract_old_z": 18, "retract_r_plane": 18, "motion_none": 20}
+_MODE_STAGE = {"feed_mode": 2, "plane": 11, "units": 12, "tool_length_offset": 14, "g5x_offset": 15,
+               "xy_rotation": 15, "path_mode": 16, "g92_offset": 19, "g52_offset": 19, "tool_table": 19}
+
+
+def _stage(c: Command, known: dict[int, int] | None = None) -> int:
+    """Where ``c`` falls in LinuxCNC's order of execution (1 messages ... 21 stops)."""
+    if known and id(c) in known:
+        return known[id(c)]
+    match c:
+        case Comment():
+            return 1
+        case FeedRate():
+            return 3
+        case SpindleSpeed():
+            return 4
+        case SelectTool():
+            return 5
+        case ToolChange():
+            return 6
+        case Spindle():
+            return 7
+        case Coolant():
+            return 8
+        case Dwell():
+            return 10
+        case SetMode():
+            return _MODE_STAGE.get(c.name, 20)
+        case Stop():
+            return 21
+    return 20
+
+
+def _place(out: list[Command], at: int, stage: int, cmd: Command, known: dict[int, int]) -> int:
+    """Insert ``cmd`` (of ``stage``) into ``out[at:]``, which is sorted by stage: a comment before
+    the calls of its stage, anything else after them; its index.  ``cmd`` takes the frame of
+    the command before it, so that the canon trace reports no offset change early."""
+    comment = isinstance(cmd, Comment)
+    k = next((i for i in range(at, len(out)) if _stage(out[i], known) > stage
+              or (comment and _stage(out[i], known) == stage)), len(out))
+    neighbour = out[k - 1] if k > at else (out[k] if k < len(out) else None)
+    if neighbour is not None and neighbour.frame is not cmd.frame:
+        cmd = replace(cmd, frame=neighbour.frame)
+        known[id(cmd)] = stage
+    out.insert(k, cmd)
+    return k
+
+
+def _is_mode(c: Command, name: str) -> bool:
+    return isinstance(c, SetMode) and c.name == name
+
+
+def _is_end(c: Command) -> bool:
+    return isinstance(c, Stop) and c.kind in (StopKind.PROGRAM_END, StopKind.END_REWIND)
+
+
+def _with(p: Vec6, i: int, v: float) -> Vec6:
+    q = list(p)
+    q[i] = v
+    return (q[0], q[1], q[2], q[3], q[4], q[5])
