@@ -74,7 +74,7 @@ block = st.one_of(
               st.lists(st.tuples(st.sampled_from("XYZ"), coord), min_size=1, max_size=3, unique_by=lambda t: t[0]),
               st.sampled_from(["", " F100.", " F1500."])).map(
         lambda t: t[0] + " " + " ".join(a + v for a, v in t[1]) + t[2]),
-    st.tuples(st.sampled_from(["G02", "G03"]), coord, coord).map(
+    st.tuples(st.sampled_from(["G02", "G03"]), coord, coord).filter(lambda t: float(t[1]) or float(t[2])).map(
         lambda t: f"G90 {t[0]} I{t[1]} J{t[2]} F200."),
     st.sampled_from(["G04 X0.5", "G04 P250", "G70", "G71", "M03 S1000", "M05", "T2 M06"]),
 )
