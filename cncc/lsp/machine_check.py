@@ -13,7 +13,8 @@ stops it at once).  It
    (E0701), an axis velocity above its maximum (E0610);
 3. plans at the configured ``opt_level`` (the inlay hints then show the planner's
    times) and runs the ``verify`` pass over that trajectory; what verify finds on a
-   command that step 2 did not flag is added (velocity and soft limits).
+   command that step 2 did not flag is added (axis velocity; soft limits too when
+   the planned trajectory is not the nominal one step 2 checked).
 
 ``result`` is filled step by step, so a run stopped at its budget still gives what
 it found before; ``result.step`` says where it stopped.
@@ -166,6 +167,9 @@ def limit_diagnostics(traj: Trajectory, cmds: Sequence[Command], machine: Machin
     out: list[Diagnostic] = []
     for (k, code, _axis), (_excess, message) in sorted(worst.items()):
         if len(out) >= MAX_REPORTS:
+            out.append(Diagnostic(dg.ANALYSIS_STOPPED, Severity.NOTE, Span(0, 0, 0),
+                                  f"{len(worst) - MAX_REPORTS} more machine limit violations are not listed "
+                                  f"(the first {MAX_REPORTS} are)"))
             break
         out.append(Diagnostic(code, dg.CODES[code].severity, cmds[k].span, message))
     return out
@@ -240,9 +244,10 @@ def verify_diagnostics(traj: Trajectory, cmds: Sequence[Command], machine: Machi
     sink = DiagnosticSink(max_count=5000)
     verify_trajectory(traj, list(cmds), machine, sink, corner_rule=effective_corner_rule(machine, level),
                       check_dynamics=level > 0)
+    kept = VERIFY_KEPT if level > 0 else VERIFY_KEPT - {dg.VERIFY_SOFT_LIMIT}  # -O0: the limit checks saw the same
     out = []
     for d in sink:
-        if d.code in VERIFY_KEPT and d.span.source_id >= 0 and d.span not in covered:
+        if d.code in kept and d.span.source_id >= 0 and d.span not in covered:
             covered.add(d.span)
             out.append(d)
     return out

@@ -8,7 +8,7 @@ from pathlib import Path
 from cncc.dialects import load_dialect
 from cncc.lsp.analysis import Request, analyze, new_analysis
 from cncc.lsp.config import Settings, find_config, guess_dialect, read_config
-from cncc.lsp.guard import Job
+from cncc.lsp.guard import Gate, Job
 from cncc.lsp.navigate import outline, program_key
 from cncc.lsp.positions import LineIndex
 
@@ -53,6 +53,28 @@ def test_guard_cancel_and_normal_end() -> None:
     job.cancel()
     assert job.future.result(timeout=10) == "cancelled"
     assert Job(lambda check: None, 1.0).start().future.result(timeout=10) is None
+
+
+def test_background_job_waits_for_the_foreground() -> None:
+    gate = Gate()
+    events: list[str] = []
+
+    def foreground(check: object) -> None:
+        for _ in range(30):
+            events.append("F")
+            check()  # type: ignore[operator]
+            time.sleep(0.002)
+
+    def background(check: object) -> None:
+        for _ in range(5):
+            check()  # type: ignore[operator]
+            events.append("B")
+
+    fg = Job(foreground, 30.0, gate=gate).start()  # holds the gate from start() on
+    bg = Job(background, 30.0, gate=gate, background=True).start()
+    assert fg.future.result(timeout=30) is None and bg.future.result(timeout=30) is None
+    assert events == ["F"] * 30 + ["B"] * 5
+    assert not gate.busy
 
 
 def test_analysis_keeps_partial_results_when_stopped() -> None:
