@@ -11,8 +11,8 @@ by default and never ``-0.0000``.
 Besides templates, ``[canon]`` may hold ``tool_table_units`` ("mm" or "inch"): the
 units of ``SET_TOOL_TABLE_ENTRY`` (LinuxCNC prints the tool table in its internal
 units, which are inches in the stand-alone ``rs274``), and ``feed_in_program_units``
-(``SET_FEED_RATE`` in program units per minute as LinuxCNC prints it; cncc's default
-trace prints mm/min).
+(``SET_FEED_RATE`` in program units per minute, as LinuxCNC prints it and like every
+position in the trace; ``false`` prints mm/min).
 """
 
 from __future__ import annotations
@@ -72,7 +72,7 @@ class CanonFormat:
         for key, value in {**DEFAULTS, **{k: v for k, v in table.items() if k in DEFAULTS}}.items():
             self.templates[key] = [value] if isinstance(value, str) else [str(v) for v in value]
         self.tool_table_inch = str(table.get("tool_table_units", "mm")) == "inch"
-        self.feed_in_program_units = bool(table.get("feed_in_program_units", False))
+        self.feed_in_program_units = bool(table.get("feed_in_program_units", True))
 
     def has(self, key: str) -> bool:
         return bool(self.templates.get(key))

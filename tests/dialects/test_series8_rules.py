@@ -153,7 +153,7 @@ def test_g04_f_is_not_a_feed() -> None:
     got, r = canon("F10\nG04F2.\nG01X1.\n", S8)
     assert r.ok
     assert [ln.split("N..... ")[1] for ln in got if "DWELL" in ln or "FEED_RATE" in ln] == [
-        "SET_FEED_RATE(254.0000)", "DWELL(2.0000)"]
+        "SET_FEED_RATE(10.0000)", "DWELL(2.0000)"]  # program units (inch/min), like the positions
 
 
 def test_bare_letters_only_for_axes() -> None:
