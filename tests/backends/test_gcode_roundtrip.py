@@ -8,48 +8,26 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from cncc.api import compile_commands, compile_text
-from cncc.ir import Arc, Dwell, Linear, Rapid
+from tests.translate.motion import difference
+from tests.translate.motion import motion as machine_motion
 
 ROOT = Path(__file__).resolve().parents[2]
 
 
 def motion(text: str, **opts: object) -> list[tuple[object, ...]]:
+    """Moves and dwells in machine terms; arcs the emitter had to cut are joined (tests/translate/motion.py)."""
     cmds, r = compile_commands(text, **opts)
     assert r.ok, [(d.code, d.message) for d in r.sink]
-    out: list[tuple[object, ...]] = []
-    for c in cmds:
-        if isinstance(c, Rapid):
-            out.append(("rapid", _r(c.end)))
-        elif isinstance(c, Linear):
-            out.append(("feed", _r(c.end), round(c.feed_mm_min, 6)))
-        elif isinstance(c, Arc):
-            out.append(("arc", _r(c.end), _r(c.center), c.turns, c.plane, round(c.feed_mm_min, 6)))
-        elif isinstance(c, Dwell):
-            out.append(("dwell", round(c.seconds, 6)))
-    return out
-
-
-def _r(v: tuple[float, ...]) -> tuple[float, ...]:
-    return tuple(round(x, 6) + 0.0 for x in v)
-
-
-def same(a: object, b: object, tol: float) -> bool:
-    if isinstance(a, tuple) and isinstance(b, tuple):
-        return len(a) == len(b) and all(same(x, y, tol) for x, y in zip(a, b, strict=True))
-    if isinstance(a, float) and isinstance(b, float):
-        return abs(a - b) <= tol * max(1.0, abs(a) * 1e-4)
-    return a == b
+    return machine_motion(cmds)
 
 
 def roundtrip(text: str) -> None:
     """Positions agree to the output precision: 1 um in mm, half of 0.0001 inch in inch."""
     r = compile_text(text, emit="gcode")
     assert r.ok
-    got, want = motion(r.output), motion(text)
-    assert len(got) == len(want), r.output
     tol = 1.3e-3 if "G70" in text else 1e-6
-    for g, w in zip(got, want, strict=True):
-        assert same(g, w, tol), (g, w, r.output)
+    why = difference(motion(text), motion(r.output), tol_mm=tol)
+    assert not why, (why, r.output)
 
 
 def test_example_roundtrips() -> None:

@@ -48,10 +48,12 @@ def motion(cmds: list[Command]) -> list[Move]:
             out.append(("feed", _add(c.end, _base(c)), c.feed_mm_min))
         elif isinstance(c, Arc):
             b = _base(c)
-            arc = ("arc", _add(c.end, b), _add(c.center, b), c.turns > 0, c.plane, c.feed_mm_min, _sweep(c))
+            centre = _add(c.center, b)  # in the plane: the normal component is the start's, not the arc's
+            arc = ("arc", _add(c.end, b), (centre[c.plane.first], centre[c.plane.second]), c.turns > 0, c.plane,
+                   c.feed_mm_min, _sweep(c))
             prev = out[-1] if out else None
             if (prev is not None and prev[0] == "arc" and prev[3:5] == arc[3:5] and close(prev[2], arc[2], 2e-3)
-                    and abs(prev[5] - arc[5]) <= 1e-4 * arc[5]):
+                    and abs(prev[5] - arc[5]) <= 1e-3 * arc[5]):  # pieces of a helix: Z rounded per piece
                 out[-1] = ("arc", arc[1], prev[2], prev[3], prev[4], prev[5], prev[6] + arc[6])
             else:
                 out.append(arc)
@@ -91,6 +93,7 @@ def _differs(w: Move, g: Move, tol_mm: float, feed_rel: float) -> str:
             return "direction or plane"
         if abs(w[5] - g[5]) > feed_rel * w[5]:
             return "feed"
-        if abs(w[6] - g[6]) > 1e-3:
+        radius = math.hypot(w[1][w[4].first] - w[2][0], w[1][w[4].second] - w[2][1])
+        if abs(w[6] - g[6]) > 1e-3 and abs(w[6] - g[6]) * radius > 2 * tol_mm:  # as a length along the arc
             return "sweep"
     return ""

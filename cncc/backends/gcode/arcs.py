@@ -40,6 +40,7 @@ class ArcForm:
     r_form: bool = False
     full_circle: bool = True
     turns_word: bool = False
+    min_piece_mm: float = 0.0  # quadrant cuts closer than this (along the arc) to an end are left out
 
 
 def sweep(start: Vec6, end: Vec6, center: Vec6, plane: Plane, turns: int) -> float:
@@ -83,8 +84,10 @@ def _cuts(start: Vec6, center: Vec6, plane: Plane, turns: int, total: float, for
         rel = (a0 if turns > 0 else -a0) % (math.pi / 2)
         first = (math.pi / 2 - rel) if rel > 1e-9 else math.pi / 2
         t = first
+        r = math.hypot(start[i] - center[i], start[j] - center[j])
         while t < total - 1e-9:
-            cuts.add(t)
+            if min(t, total - t) * r >= form.min_piece_mm:  # no sliver the target could not tell apart
+                cuts.add(t)
             t += math.pi / 2
     else:
         if not form.turns_word:
@@ -132,6 +135,6 @@ def helix_feed_ratio(start: Vec6, end: Vec6, center: Vec6, plane: Plane, turns: 
         return 1.0
     i, j = plane.first, plane.second
     planar = sweep(start, end, center, plane, turns) * math.hypot(start[i] - center[i], start[j] - center[j])
-    if planar <= 0.0:
+    if planar <= 1e-9:  # a degenerate arc of no radius: the feed is left as it is
         return 1.0
     return planar / math.hypot(planar, rise)

@@ -59,7 +59,21 @@ def _parameter_problem(c: Cycle, target: Target) -> str:
         return "a tapping cycle without a spindle speed"
     if c.kind in _SHIFTS and shift_vector(c, target) != c.shift_mm:
         return f"{target.name} shifts the boring bar in another direction (cycle_shift_direction)"
+    if c.kind in _PECKS and peck_lift(c.kind, target) != (getattr(c, "lift_pause_s", 0.0),
+                                                          getattr(c, "lift_at_feed", False)):
+        return f"{target.name} lifts between pecks differently (cycle_peck_pause_ms)"
+    user = f"cycle_user_{target.cycles[c.kind.value].name.lower()}"
+    if target.option(user, 0):
+        return f"{target.name} runs a user program for {target.cycles[c.kind.value].name} ({user})"
     return ""
+
+
+def peck_lift(kind: CycleKind, target: Target) -> tuple[float, bool]:
+    """(pause before each peck lift in s, lift at feed) of the target (SZGH User P8)."""
+    ms = float(target.option("cycle_peck_pause_ms", 0.0))
+    if kind not in _PECKS or abs(ms) <= 5.0:
+        return (0.0, False)
+    return (abs(ms) / 1000.0, ms < 0)
 
 
 def target_retract(c: Cycle, target: Target) -> float:

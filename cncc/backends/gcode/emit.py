@@ -101,6 +101,7 @@ class GcodeEmitter:
         self.tf = TargetFrame()
         self.fold: Vec6 | None = None
         self.qpos: list[int] | None = None  # last written position, in output counts
+        self.offgrid: set[int] = set()  # axes where the tool is not at a writable number
         self.cycle_initial: int | None = None  # counts of the initial level while a cycle is active
         self.cycle_data: list[str] = []  # code and data words of the cycle in force
         self.cycle_return = ""
@@ -163,17 +164,34 @@ class GcodeEmitter:
             self.warn(dg.XL_NO_CODE, f"{self.t.name} has no code for {what}")
         return name
 
+    def op_block(self, op: str, what: str, words: Iterable[str] = (), comment: str = "") -> str:
+        """A block with ``op``'s code; a comment saying what is missing when the target has none."""
+        name = self.code(op, what)
+        if not name:
+            return self.block([], f"{what}: no {self.t.name} code")
+        return self.block([name, *words], comment)
+
     # ---- program -------------------------------------------------------------------------------
     def emit(self, cmds: Iterable[Command]) -> Iterator[str]:
         if self.t.percent:
             yield "%\n"
-        yield self.block([self.code("plane_xy"), self.code("inch" if self.units is Units.INCH else "metric"),
-                          self.code("absolute"), self.code("feed_per_min")])
+        started = False
         for cmd in cmds:
             self.span = cmd.span
+            if not started and not isinstance(cmd, Comment):  # the modes, in the first command's units
+                started = True
+                yield self._preamble(cmd.frame)
             yield from self._command(cmd)
+        if not started:
+            yield self._preamble(Frame(units=self.units))
         if self.t.percent:
             yield "%\n"
+
+    def _preamble(self, f: Frame) -> str:
+        if self.forced is None:
+            self.units = f.units
+        return self.block([self.code("plane_xy"), self.code("inch" if self.units is Units.INCH else "metric"),
+                           self.code("absolute"), self.code("feed_per_min")])
 
     def _command(self, cmd: Command) -> Iterator[str]:
         match cmd:
@@ -183,29 +201,32 @@ class GcodeEmitter:
             case Cycle():
                 yield from self._cycle(cmd)
             case Dwell():
-                yield self.block([self.code("dwell", "a dwell"), self._dwell_word(cmd.seconds)])
+                yield self.op_block("dwell", "a dwell", [self._dwell_word(cmd.seconds)])
             case SpindleSpeed():
                 yield self.block([f"S{fixed(cmd.rpm, 3)}"])
             case SelectTool():
+                limit = self.t.word_max.get("T")
+                if limit is not None and cmd.tool > limit:
+                    self.warn(dg.XL_WORD_RANGE, f"T{cmd.tool}: {self.t.name} takes tool numbers up to {limit:g}")
                 yield self.block([f"T{cmd.tool}"])
             case Spindle():
-                yield self.block([self.code(_SPINDLE_OPS[cmd.state], f"spindle {cmd.state.value}")])
+                yield self.op_block(_SPINDLE_OPS[cmd.state], f"spindle {cmd.state.value}")
             case Coolant():
-                yield self.block([self.code(_COOLANT_OPS[cmd.state], f"{cmd.state.value} coolant")])
+                yield self.op_block(_COOLANT_OPS[cmd.state], f"{cmd.state.value} coolant")
             case ToolChange():
                 yield from self._tool_change(cmd)
             case Stop():
                 if self.cycle_initial is not None and cmd.kind in (StopKind.PROGRAM_END, StopKind.END_REWIND):
                     yield self.block([self.t.code("cycle_off")])
                     self.cycle_initial = None
-                yield self.block([self.code(_STOP_OPS[cmd.kind], cmd.kind.name.lower().replace("_", " "))])
+                yield self.op_block(_STOP_OPS[cmd.kind], cmd.kind.name.lower().replace("_", " "))
             case Comment():
                 yield self.block([], cmd.text)
             case Message():
                 stop = self.code("program_stop") if cmd.pause else ""
                 yield self.block([stop], cmd.text)
             case Wait():
-                yield self.block([self.code("program_stop", "a wait")], f"wait: {cmd.what}")
+                yield self.op_block("program_stop", "a wait", comment=f"wait: {cmd.what}")
             case Aux():
                 yield from self._aux(cmd)
             case SetMode():
@@ -324,17 +345,30 @@ class GcodeEmitter:
         fold = self.fold or (0.0,) * 6
         return [self.counts(p[i] + fold[i], i) for i in range(6)]
 
+    def _start_at(self, start: Vec6) -> list[int]:
+        """The written position, taken from ``start`` after a frame or unit change.
+
+        Axes whose position is not a number the output can write are remembered in
+        ``offgrid`` until a word is written for them (a full circle there is split).
+        """
+        if self.qpos is None:
+            fold = self.fold or (0.0,) * 6
+            self.qpos = self._at(start)
+            self.offgrid = {i for i in range(3)
+                            if abs(self.qpos[i] * 10.0**-self.decimals * self.units.mm_per_unit
+                                   - (start[i] + fold[i])) > 1e-9}
+        return self.qpos
+
     def _axes(self, start: Vec6, end: Vec6, always: tuple[int, ...] = ()) -> list[str]:
         """Words for the axes whose written value changes (the first plane axis for a null move)."""
-        if self.qpos is None:
-            self.qpos = self._at(start)
+        qpos = self._start_at(start)
         q = self._at(end)
-        words = [f"{AXES[i]}{self.text(q[i], i)}" for i in range(6) if q[i] != self.qpos[i] or i in always]
-        if not words:
-            i = self.plane.first
-            words = [f"{AXES[i]}{self.text(q[i], i)}"]
+        changed = [i for i in range(6) if q[i] != qpos[i] or i in always]
+        if not changed:
+            changed = [self.plane.first]
+        self.offgrid -= set(changed)
         self.qpos = q
-        return words
+        return [f"{AXES[i]}{self.text(q[i], i)}" for i in changed]
 
     def _feed_word(self, feed_mm_min: float) -> str:
         if self.feed is not None and abs(self.feed - feed_mm_min) <= 1e-9 * max(1.0, feed_mm_min):
@@ -354,8 +388,12 @@ class GcodeEmitter:
 
     def _arc(self, a: Arc) -> Iterator[str]:
         t = self.t
-        form = ArcForm(single_quadrant=t.single_quadrant, r_form=t.arc_form == "r", full_circle=t.full_circle,
-                       turns_word=bool(t.turns_word))
+        i, j = a.plane.first, a.plane.second
+        self._start_at(a.start)
+        closes = t.full_circle and not ({i, j} & self.offgrid)  # a full circle can end where it starts
+        form = ArcForm(single_quadrant=t.single_quadrant, r_form=t.arc_form == "r", full_circle=closes,
+                       turns_word=bool(t.turns_word),
+                       min_piece_mm=10.0 ** (1 - self.decimals) * self.units.mm_per_unit)
         pieces = split(a.start, a.end, a.center, a.plane, a.turns, form)
         if len(pieces) > 1:
             self.warn(dg.XL_ARC_SPLIT, f"{t.name} output: an arc is written as {len(pieces)} pieces")
@@ -363,29 +401,35 @@ class GcodeEmitter:
         if t.option("helix_feed", "projection") == "projection":
             feed *= helix_feed_ratio(a.start, a.end, a.center, a.plane, a.turns)
         code = t.code("arc_ccw" if a.turns > 0 else "arc_cw")
-        i, j = a.plane.first, a.plane.second
         for piece in pieces:
-            if self.qpos is None:
-                self.qpos = self._at(piece.start)
-            start_q = self.qpos
-            center_q = self._at(a.center)
+            offsets = self._centre_offsets(a, piece.start)
             words = [code, *self._axes(piece.start, piece.end, always=(i, j))]  # full circles need them too
-            words += self._centre_words(a.plane, start_q, center_q, piece.sweep_rad, form)
+            words += self._centre_words(a.plane, offsets, piece.sweep_rad, form)
             if piece.turns_extra:
                 words.append(f"{t.turns_word}{piece.turns_extra + 1}")
             words.append(self._feed_word(feed))
             yield self.block(words)
 
-    def _centre_words(self, plane: Plane, start_q: list[int], center_q: list[int], sweep_rad: float,
-                      form: ArcForm) -> list[str]:
-        i, j = plane.first, plane.second
+    def _centre_offsets(self, a: Arc, start: Vec6) -> tuple[int, int]:
+        """Centre minus the tool's position in counts: from the written numbers where the tool is
+        at one (so the centre re-parses to the written centre), else from the position itself."""
+        fold = self.fold or (0.0,) * 6
+        start_q = self._start_at(start)
+        out = []
+        for k in (a.plane.first, a.plane.second):
+            if k in self.offgrid:
+                out.append(self.counts(a.center[k] - start[k]))
+            else:
+                out.append(self.counts(a.center[k] + fold[k]) - start_q[k])
+        return out[0], out[1]
+
+    def _centre_words(self, plane: Plane, offsets: tuple[int, int], sweep_rad: float, form: ArcForm) -> list[str]:
         if form.r_form:
             import math
 
-            r = math.hypot(center_q[i] - start_q[i], center_q[j] - start_q[j])
             sign = -1 if sweep_rad > math.pi else 1
-            return [f"R{self.text(sign * round(r))}"]
-        d1, d2 = center_q[i] - start_q[i], center_q[j] - start_q[j]
+            return [f"R{self.text(sign * round(math.hypot(*offsets)))}"]
+        d1, d2 = offsets
         if form.single_quadrant:
             d1, d2 = abs(d1), abs(d2)
         l1, l2 = _ARC_LETTERS[plane]
@@ -402,8 +446,8 @@ class GcodeEmitter:
             if self.cycle_initial is not None and self.cycle_initial != initial:
                 yield self.block([self.t.code("cycle_off")])
                 self.cycle_initial = None
-            if self.qpos is None:
-                self.qpos = self._at(c.start)
+            self._start_at(c.start)
+            assert self.qpos is not None
             if self.cycle_initial is None and self.qpos[n] != initial:
                 problem = "the tool is not at the cycle's initial level"
         if problem:

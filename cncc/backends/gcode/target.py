@@ -21,6 +21,8 @@ lists the keys):
 ``max_call_depth``        subprogram nesting (default: ``[macro] max_call_depth`` or 4)
 ``percent``               wrap the program in ``%`` lines (default false)
 ``prefer``                code names that win when several codes share one op
+``ops``                   ``{ dwell = "G04" }``: the code that means a canonical op when the
+                          dialect's own op name differs (a code with its own front-end handler)
 ``decimals_mm`` / ``decimals_inch``  default output precision (3 / 4)
 ``word_max``              per-letter largest value, e.g. ``{ T = 255 }`` (T: option ``max_tool_number``)
 """
@@ -30,7 +32,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Any
 
-from cncc.dialects import CodeDef, Dialect
+from cncc.dialects import CodeDef, Dialect, code_tenths
 
 
 @dataclass(frozen=True, slots=True)
@@ -105,6 +107,11 @@ def make_target(dialect: Dialect) -> Target:
         if cdef.op == "cycle" and cdef.cycle:
             cycles.setdefault(cdef.cycle, cdef)
         by_op.setdefault(cdef.op, cdef)
+    for op, name in dict(emit.get("ops", {})).items():  # canonical op -> the code that means it here
+        letter, number = str(name)[:1].upper(), str(name)[1:]
+        found = dialect.code(letter, code_tenths(number)) if number else None
+        if found is not None:
+            by_op[str(op)] = found
     macro: dict[str, Any] = dict(dialect.raw.get("macro", {}))
     numbers = emit.get("program_numbers", [1, 9999])
     return Target(
