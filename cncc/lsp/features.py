@@ -63,6 +63,7 @@ def register(ls: CnccServer) -> None:  # noqa: C901 - one closure per LSP method
                 st.pending.cancel()
             if st.job is not None:
                 st.job.cancel()
+            ls.stop_machine_phase(st)
         ls.text_document_publish_diagnostics(lsp.PublishDiagnosticsParams(uri=params.text_document.uri,
                                                                           diagnostics=[]))
 

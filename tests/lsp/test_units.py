@@ -11,6 +11,7 @@ from cncc.lsp.config import Settings, find_config, guess_dialect, read_config
 from cncc.lsp.guard import Gate, Job
 from cncc.lsp.navigate import outline, program_key
 from cncc.lsp.positions import LineIndex
+from cncc.lsp.variables import hover_variable
 
 SYNTEC = load_dialect("syntec")
 
@@ -122,3 +123,15 @@ def test_outline_keys_meet() -> None:
     assert [r.key for r in out.programs] == ["1"]
     assert sorted((r.what, r.key) for r in out.calls) == [("GOTO", "7"), ("M98 H", "100"), ("M99 P", "7")]
     assert sorted(r.key for r in out.labels) == ["100", "7"]
+
+
+def test_traced_values_follow_jumps() -> None:
+    text = "#1=1\nGOTO 10\n#1=99\nN10 G01 X#1 F100.\nM30\n"
+    a = new_analysis(Request("file:///j.nc", "/j.nc", 1, text, "syntec", Settings()))
+    analyze(a, lambda: None)
+    used = text.index("X#1") + 1
+    assert "= 1 when cncc ran this block" in hover_variable(text, a.index, SYNTEC, 1, used, a.trace)
+    skipped = text.index("#1=99")
+    assert "not reached" in hover_variable(text, a.index, SYNTEC, 1, skipped, a.trace)
+    # without the run's record, the document-order reading takes the skipped assignment
+    assert "= 99" in hover_variable(text, a.index, SYNTEC, 1, used, None)
