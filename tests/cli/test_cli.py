@@ -109,8 +109,8 @@ def test_main_in_process_does_not_raise_on_binary(capsys: pytest.CaptureFixture[
 
 
 def test_rapid_type_option_reaches_the_machine() -> None:
-    from cncc.driver import Options, apply_dialect_to_machine, default_machine
     from cncc.diagnostics import DiagnosticSink
+    from cncc.driver import Options, apply_dialect_to_machine, default_machine
     from cncc.ir.machine import RapidMode
 
     sink = DiagnosticSink()
