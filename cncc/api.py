@@ -29,8 +29,8 @@ def compile_text(text: str, *, dialect: str = "syntec", emit: str = "canon", **o
 
 def compile_commands(text: str, *, dialect: str = "syntec", **options: Any) -> tuple[list[Any], Result]:
     """The IR commands after the path passes (program coordinates), and the result."""
-    from cncc.driver import front_end, path_passes, resolve_dialect, resolve_machine
     from cncc.diagnostics import DiagnosticSink
+    from cncc.driver import front_end, path_passes, resolve_dialect, resolve_machine
     from cncc.source import SourceMap
 
     opts = Options(inputs=["-"], dialect=dialect, **options)

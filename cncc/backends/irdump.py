@@ -17,7 +17,7 @@ def _fmt(v: object) -> str:
     if isinstance(v, tuple):
         return "(" + ", ".join(_fmt(x) for x in v) + ")"
     if hasattr(v, "name") and hasattr(v, "value") and type(v).__module__.startswith("cncc"):
-        return str(getattr(v, "name"))
+        return str(v.name)
     return repr(v) if isinstance(v, str) else str(v)
 
 

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from cncc.ir import Motion, Vec6, ZERO6
+from cncc.ir import ZERO6, Motion, Vec6
 
 
 @dataclass(frozen=True, slots=True)

@@ -6,7 +6,7 @@ from collections.abc import Iterable, Iterator
 from dataclasses import dataclass, field
 
 from cncc.ir.commands import Command
-from cncc.ir.frame import Vec6, ZERO6
+from cncc.ir.frame import ZERO6, Vec6
 from cncc.source import SourceMap
 
 
