@@ -89,7 +89,7 @@ def timed_plan(cmds: list[Command], machine: MachineModel, level: int) -> tuple[
     traj = plan_commands(cmds, machine, level, sink)
     elapsed = time.perf_counter() - t0
     report = verify_trajectory(traj, cmds, machine, sink, corner_rule=effective_corner_rule(machine, level),
-                               check_dynamics=level > 0)
+                               check_dynamics=level > 0, jerk_limited=level >= 2)
     return traj.duration_total_s, elapsed, report.count
 
 

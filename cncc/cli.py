@@ -29,7 +29,7 @@ def _parser() -> argparse.ArgumentParser:
     p.add_argument("-O", dest="opt_level", type=int, choices=range(4), default=2, metavar="LEVEL",
                    help="planner level: -O0 nominal, -O1 trapezoid, -O2 jerk-limited (default), -O3 optimal")
     p.add_argument("-f", dest="flags", action="append", default=[], metavar="FLAG",
-                   help="-fsyntax-only, -fstrict, -frepair-arcs, -fno-block-delete, -fline-numbers, "
+                   help="-fsyntax-only, -fstrict, -frepair-arcs, -fno-block-delete, -fline-numbers, -fno-verify, "
                         "or a dialect option -fNAME=VALUE (e.g. -frapid_type=independent)")
     p.add_argument("-W", dest="warnings", action="append", default=[], metavar="WARN",
                    help="-Werror turns warnings into errors")
@@ -132,6 +132,8 @@ def build_options(ns: argparse.Namespace, error: Any) -> Any:
             opts.block_delete = False
         elif flag == "line-numbers":  # --emit=gcode: N10, N20 ... on every block
             opts.line_numbers = True
+        elif flag == "no-verify":  # timing, pulses: skip the verify pass after plan
+            opts.verify = False
         elif "=" in flag:
             key, _, val = flag.partition("=")
             opts.dialect_options[key.replace("-", "_")] = _value(val)

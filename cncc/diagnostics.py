@@ -170,6 +170,7 @@ AXIS_NOT_ON_MACHINE = _define("E0602", E, "a move commands an axis the machine m
 FEED_CLAMPED = _define("N0603", N, "the programmed feed is above the machine's feed cap and is clamped")
 BAD_FEED = _define("E0604", E, "a feed move has a zero or negative feed rate")
 PLAN_FALLBACK = _define("W0605", W, "the planner could not solve a window optimally and used a safer profile")
+FEED_TOO_SMALL = _define("W0606", W, "a feed below the smallest one the planner handles is planned at that minimum")
 VERIFY_VELOCITY = _define("E0610", E, "verify: an axis velocity exceeds its limit")
 VERIFY_ACCEL = _define("E0611", E, "verify: an axis acceleration exceeds its limit")
 VERIFY_JERK = _define("E0612", E, "verify: an axis jerk exceeds its limit")

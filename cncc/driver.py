@@ -64,6 +64,7 @@ class Options:
     decimals_inch: int | None = None  # --decimals-inch
     pulse_format: str = "vcd"  # --emit=pulses: vcd | csv | npz | queue
     pulse_mode: str = "exact"  # --emit=pulses: exact | interp (SZGH 2 ms interpolation)
+    verify: bool = True  # -fno-verify: skip the verify pass after plan (timing, pulses)
 
 
 @dataclass(slots=True)
@@ -404,15 +405,36 @@ def run_backend(cmds: Iterator[Command], src: SourceFile, sources: SourceMap, di
     return iter(())
 
 
-def plan_trajectory(cmds: list[Command], machine: MachineModel, level: int, sink: DiagnosticSink) -> tuple[Any, str]:
-    """(Trajectory, how it was made) for the timing report: the nominal one at -O0, else the planner's."""
+def plan_trajectory(cmds: list[Command], machine: MachineModel, level: int, sink: DiagnosticSink,
+                    verify: bool = True, soft_limits: bool = False) -> tuple[Any, str]:
+    """(Trajectory, how it was made): blend, then the nominal one at -O0, else the planner's;
+    then (``verify``, -O1..-O3) the verify pass, whose violations become diagnostics.  The
+    -O0 nominal estimate is not verified: it has no acceleration by design, runs the
+    programmed feed unclamped and draws arcs as coarse chords for its plots.
+
+    ``cmds`` are in machine coordinates (``to-machine`` ran in ``path_passes``); blend keeps
+    their order and count, so ``Trajectory.cmd_index`` still indexes ``cmds``.  Soft limits
+    are checked only when the work offsets are known (``soft_limits``: ``--offsets`` given):
+    with the default zero offsets, program coordinates are no machine positions.
+    """
+    from cncc.machines import effective_corner_rule
+    from cncc.passes import PassContext
+    from cncc.passes.blend import Blend
+    from cncc.passes.verify import verify_trajectory
+
+    blended = list(Blend().run(cmds, PassContext(sink=sink, machine=machine)))
     if level == 0:
         from cncc.backends.nominal import nominal_trajectory
 
-        return nominal_trajectory(cmds, machine), "nominal: length / feed"
-    from cncc.passes.plan import plan_commands
+        traj, how = nominal_trajectory(blended, machine), "nominal: length / feed"
+    else:
+        from cncc.passes.plan import plan_commands
 
-    return plan_commands(cmds, machine, level=level, sink=sink), f"planned -O{level}"
+        traj, how = plan_commands(blended, machine, level=level, sink=sink), f"planned -O{level}"
+    if verify and level > 0:  # -O0 is the CAM-style estimate: no machine plan to check
+        verify_trajectory(traj, blended, machine, sink, corner_rule=effective_corner_rule(machine, level),
+                          check_dynamics=True, jerk_limited=level >= 2, check_soft_limits=soft_limits)
+    return traj, how
 
 
 PULSE_BINARY_FORMATS = ("npz",)
@@ -450,7 +472,8 @@ def pulse_backend(cmds: Iterator[Command], machine: MachineModel, opts: Options,
     if problem:
         sink.emit(dg.BAD_OPTION, NO_SPAN, problem)
         return iter(())
-    traj, _ = plan_trajectory(cmd_list, machine, opts.opt_level, sink)
+    traj, _ = plan_trajectory(cmd_list, machine, opts.opt_level, sink, verify=opts.verify,
+                              soft_limits=opts.offsets_file is not None)
     chunks = generate_pulses(traj, machine, mode=opts.pulse_mode, spans=[c.span for c in cmd_list], sink=sink)
     if to_stdout:
         buf = io.StringIO()
@@ -475,7 +498,8 @@ def timing_runs(cmds: list[Command], machine: MachineModel, opts: Options, sink:
         if model is None:
             return []
         with stage(f"planning {spec.label} on {model.name}", len(cmds)):
-            traj, how = plan_trajectory(cmds, model, spec.level, sink)
+            traj, how = plan_trajectory(cmds, model, spec.level, sink, verify=opts.verify,
+                                        soft_limits=opts.offsets_file is not None)
         runs.append(Run(spec.label, model, spec.level, traj, how, nominal=spec.level == 0))
     return runs
 

@@ -14,15 +14,22 @@ commands and the machine model, and checks each constant-jerk phase analytically
   quadratic) against ``max_velocity`` (feed moves) or ``rapid`` (rapids) and the step
   rate ``max_step_rate_hz / steps_per_mm``.
 * E0611 / E0612 acceleration / jerk within phases (``check_dynamics``).
+* E0618 acceleration steps between phases (``jerk_limited`` plans): a step of axis
+  acceleration is spread by the controller over one interpolation period ``T`` like a
+  velocity step, so it must stay within ``max_jerk * T``.  Trapezoid plans (-O1) step
+  their acceleration by design and are checked with ``jerk_limited=False``.
 * E0617 corner: velocity steps between phases.  ``junction-deviation``: grbl's
   junction speed for the step's angle; ``speed-step``: per-axis step <= the axis'
   speed step (take-off speed from or to rest); ``blend`` / ``exact-stop``: the
   controller spreads a step over one interpolation period ``T``, so the axis sees
   ``a(t) + sum(steps in (t - T, t]) / T``, which must stay within ``max_accel``.
 * E0614 feed: path speed above the programmed (and machine-capped) feed.
-* E0613 path: positions farther than the blend tolerance (+ arc tolerance) from the
-  programmed path of the responsible command or its motion neighbours.
-* E0615 soft limits.
+* E0613 path (``check_path``): positions farther than the blend tolerance (+ arc
+  tolerance) from the programmed path of the responsible command or its motion
+  neighbours.  The driver skips it for the -O0 nominal trajectory of the timing
+  backend, which draws arcs as 10-degree chords for its plots.
+* E0615 soft limits (``check_soft_limits``: the driver checks them only when the work
+  offsets are known, i.e. with ``--offsets``).
 Returns a :class:`VerifyReport`; the pass wrapper reads ``ctx.options['trajectory']``.
 """
 
@@ -45,6 +52,7 @@ from cncc.source import NO_SPAN
 
 REL = 1e-6  # relative slack on every limit (floating point)
 MAX_REPORTS = 5  # diagnostics per kind; the rest are counted
+PLAN_MIN_FEED_MM_MIN = 0.1  # the planners' documented smallest feed (docs/planning.md, W0606)
 
 
 @dataclass
@@ -96,15 +104,17 @@ def _cmd_table(cmds: Sequence[Command], machine: MachineModel) -> _Cmds:
             motion[i] = True
             rapid[i] = isinstance(c, Rapid)
             if not isinstance(c, Rapid):
-                feed[i] = min(c.feed_mm_min if c.feed_mm_min > 0 else machine.default_feed_mm_min,
-                              machine.max_feed_mm_min) / 60
+                programmed = c.feed_mm_min if c.feed_mm_min > 0 else machine.default_feed_mm_min
+                feed[i] = min(max(programmed, PLAN_MIN_FEED_MM_MIN), machine.max_feed_mm_min) / 60
             if c.motion.blend_tolerance_mm is not None:
                 tol[i] = c.motion.blend_tolerance_mm
     return _Cmds(rapid, feed, tol, motion)
 
 
 def verify_trajectory(traj: Trajectory, cmds: Sequence[Command], machine: MachineModel, sink: DiagnosticSink,
-                      *, corner_rule: CornerRule | None = None, check_dynamics: bool = True) -> VerifyReport:
+                      *, corner_rule: CornerRule | None = None, check_dynamics: bool = True,
+                      jerk_limited: bool = True, check_soft_limits: bool = True,
+                      check_path: bool = True) -> VerifyReport:
     """Check ``traj`` (planned from ``cmds``) against ``machine``; see the module docstring."""
     report = VerifyReport()
     if traj.phase_count == 0:
@@ -141,13 +151,19 @@ def verify_trajectory(traj: Trajectory, cmds: Sequence[Command], machine: Machin
              "an axis jerk exceeds its limit")
         bad_c = _corners(traj, v_end, a_end, lim, rule, machine)
         emit(dg.VERIFY_CORNER, bad_c, f"a velocity step exceeds the corner rule '{rule.value}'")
+        if jerk_limited:
+            emit(dg.VERIFY_ACCEL_STEP, _accel_steps(traj, a_end, lim["j"], machine.interpolation_period_s),
+                 "an acceleration step exceeds the jerk limit over one interpolation period")
     speed = np.maximum(np.linalg.norm(v0, axis=1), np.linalg.norm(v_end, axis=1))
     speed = np.maximum(speed, np.linalg.norm(_v_at(v0, a0, j, traj.duration_s / 2), axis=1))
     emit(dg.VERIFY_FEED, speed > table.feed_mm_s[ci] * (1 + REL) + 1e-9, "the path speed exceeds the programmed feed")
-    independent = table.rapid[ci] & (machine.rapid_mode is RapidMode.INDEPENDENT)
-    dev = _deviation(traj, p_end, cmds, table, ci)
-    allowed = table.tol_mm[ci] + machine.arc_tolerance_mm + 1e-6
-    emit(dg.VERIFY_PATH, (dev > allowed) & ~independent, "the trajectory leaves the programmed path")
+    if check_path:
+        independent = table.rapid[ci] & (machine.rapid_mode is RapidMode.INDEPENDENT)
+        dev = _deviation(traj, p_end, cmds, table, ci)
+        allowed = table.tol_mm[ci] + machine.arc_tolerance_mm + 1e-6
+        emit(dg.VERIFY_PATH, (dev > allowed) & ~independent, "the trajectory leaves the programmed path")
+    if not check_soft_limits:
+        return report
     lo, hi = _extent(traj.p0_mm, p_end, v0, a0, j, traj.duration_s)
     emit(dg.VERIFY_SOFT_LIMIT, ((lo < lim["lo"] - 1e-6) | (hi > lim["hi"] + 1e-6)).any(axis=1),
          "an axis leaves its soft limits")
@@ -195,6 +211,18 @@ def _corners(traj: Trajectory, v_end: FloatArray, a_end: FloatArray, lim: dict[s
     else:
         return _smeared(traj, step, a_end, lim["a"], period)[:n]
     bad = ~ok
+    bad[n - 1] |= bad[n]
+    out: np.ndarray = bad[:n]
+    return out
+
+
+def _accel_steps(traj: Trajectory, a_end: FloatArray, jmax: FloatArray, period_s: float) -> np.ndarray:
+    """Phase k is flagged when the acceleration step at its start (or, for the last
+    phase, at its end) exceeds ``max_jerk * T`` on some axis."""
+    n, m = traj.a0_mm_s2.shape
+    before = np.vstack([np.zeros((1, m)), a_end])
+    after = np.vstack([traj.a0_mm_s2, np.zeros((1, m))])
+    bad = (np.abs(after - before) > jmax * period_s * (1 + REL) + 1e-6).any(axis=1)
     bad[n - 1] |= bad[n]
     out: np.ndarray = bad[:n]
     return out
@@ -289,6 +317,6 @@ class Verify(Pass):
             level = int(ctx.options.get("plan_level", 2))
             report = verify_trajectory(traj, items, ctx.machine, ctx.sink,
                                        corner_rule=effective_corner_rule(ctx.machine, level),
-                                       check_dynamics=self.check_dynamics and level > 0)
+                                       check_dynamics=self.check_dynamics and level > 0, jerk_limited=level >= 2)
             ctx.options["verify_report"] = report
         return iter(items)

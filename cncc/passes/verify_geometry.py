@@ -3,10 +3,12 @@
 :func:`distance_to_commands` takes points ``(n, 6)`` and, per point, the index of the
 responsible command; it returns the distance to the nearest of that command and its
 previous and next motion commands (a blended corner lies between two commands).
-Lines and rapids: distance to the segment.  Arcs and helices: the in-plane radial
-error (to the radius band between start and end radius) combined with the distance of
-the other coordinates to the band between their start and end values; the angular
-extent is not checked (lenient by design, the radial error is what a blend can break).
+Lines and rapids: distance to the segment.  Arcs and helices: for a point whose angle
+about the centre lies within the swept angle (``turns`` per the IR: + counter-clockwise
+in the plane's first/second axes, ``|turns| > 1`` whole extra turns, start = end a full
+circle), the in-plane radial error (to the radius band between start and end radius)
+combined with the distance of the other coordinates to the band between their start and
+end values; outside the sweep, the distance to the nearer end point.
 """
 
 from __future__ import annotations
@@ -24,6 +26,7 @@ def _tables(cmds: Sequence[Command]) -> dict[str, np.ndarray]:
     start, end, center = np.zeros((n, 6)), np.zeros((n, 6)), np.zeros((n, 6))
     is_arc = np.zeros(n, bool)
     plane = np.zeros((n, 3), np.int64)
+    turns = np.zeros(n, np.int64)
     for i, c in enumerate(cmds):
         if isinstance(c, Rapid | Linear | Arc):
             start[i], end[i] = c.start, c.end
@@ -31,7 +34,8 @@ def _tables(cmds: Sequence[Command]) -> dict[str, np.ndarray]:
                 is_arc[i] = True
                 center[i] = c.center
                 plane[i] = c.plane.value
-    return {"start": start, "end": end, "center": center, "arc": is_arc, "plane": plane}
+                turns[i] = c.turns
+    return {"start": start, "end": end, "center": center, "arc": is_arc, "plane": plane, "turns": turns}
 
 
 def _neighbours(motion: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -71,8 +75,32 @@ def _arc_dist(p: FloatArray, tab: dict[str, np.ndarray], c: np.ndarray) -> Float
     other = _band(p, st, en)
     other[rows, f] = 0.0
     other[rows, s] = 0.0
-    out: FloatArray = np.hypot(radial, np.linalg.norm(other, axis=1))
+    on_arc = np.hypot(radial, np.linalg.norm(other, axis=1))
+    inside = _within_sweep(p, st, en, ce, f, s, tab["turns"][c], np.maximum(np.maximum(r0, r1), 1e-12))
+    ends = np.minimum(np.linalg.norm(p - st, axis=1), np.linalg.norm(p - en, axis=1))
+    out: FloatArray = np.where(inside, on_arc, ends)
     return out
+
+
+def _within_sweep(p: FloatArray, st: FloatArray, en: FloatArray, ce: FloatArray, f: np.ndarray, s: np.ndarray,
+                  turns: np.ndarray, radius: FloatArray) -> np.ndarray:
+    """Whether each point's angle about the centre lies in the arc's swept angle (with
+    an angular slack of 1 um along the arc)."""
+    rows = np.arange(p.shape[0])
+    two_pi = 2 * np.pi
+
+    def angle(q: FloatArray) -> FloatArray:
+        out: FloatArray = np.arctan2(q[rows, s] - ce[rows, s], q[rows, f] - ce[rows, f])
+        return out
+
+    a_start, a_end, a_p = angle(st), angle(en), angle(p)
+    ccw = turns >= 0
+    span = np.where(ccw, (a_end - a_start) % two_pi, (a_start - a_end) % two_pi)
+    span = np.where(span < 1e-9, two_pi, span) + two_pi * (np.maximum(np.abs(turns), 1) - 1)
+    offset = np.where(ccw, (a_p - a_start) % two_pi, (a_start - a_p) % two_pi)
+    slack = 1e-3 / radius
+    inside: np.ndarray = (span >= two_pi - 1e-12) | (offset <= span + slack) | (offset >= two_pi - slack)
+    return inside
 
 
 def distance_to_commands(points: FloatArray, ci: np.ndarray, cmds: Sequence[Command], motion: np.ndarray

@@ -23,7 +23,7 @@ def plan(cmds: list, machine=GENERIC, level: int = 2) -> Trajectory:  # type: ig
     sink = DiagnosticSink()
     traj = plan_commands(cmds, machine, level, sink)
     report = verify_trajectory(traj, cmds, machine, sink, corner_rule=effective_corner_rule(machine, level),
-                               check_dynamics=level > 0)
+                               check_dynamics=level > 0, jerk_limited=level >= 2)
     assert report.count == 0, [d.message for d in sink]
     return traj
 
@@ -163,3 +163,89 @@ def test_boundary_speeds_match_a_sequential_pass() -> None:
     for i in range(n - 1, -1, -1):  # backward
         ref[i] = min(ref[i], ref[i + 1] + 2 * acap[i] * length[i])
     np.testing.assert_allclose(x, ref, rtol=1e-9, atol=1e-9)
+
+
+@pytest.mark.parametrize("vcaps", [(50.0,), (50.0, 12.0, 40.0), (8.0, 30.0, 30.0, 5.0), (200.0, 150.0)])
+def test_topp_scan_matches_toppra(vcaps: tuple[float, ...]) -> None:
+    """The min-plus TOPP of profile.py against toppra on the same 1-D problem.
+
+    A piecewise-straight path with per-segment caps is, on its path coordinate, the
+    problem toppra solves for a one-joint path q(s) = s with a speed cap varying along s.
+    toppra discretises (it checks the caps at its grid points only); the scan is exact.
+    The times agree within 0.5 %, the speeds away from the cap changes within 2 % of the
+    largest cap.
+    """
+    import toppra as ta
+    import toppra.algorithm as algo
+    import toppra.constraint as constraint
+
+    from cncc.passes.planning.profile import boundary_speeds, trapezoids
+
+    ta.setup_logging("WARNING")
+    a_max = 1500.0
+    bounds = np.concatenate([[0.0], np.cumsum(np.linspace(6.0, 9.0, len(vcaps)))])
+    vc = np.array(vcaps)
+
+    def vlim(s: float) -> np.ndarray:  # at a cap change both caps hold
+        lo = min(max(int(np.searchsorted(bounds, s - 1e-9, side="right")) - 1, 0), len(vcaps) - 1)
+        hi = min(int(np.searchsorted(bounds, s + 1e-9, side="right")) - 1, len(vcaps) - 1)
+        v = min(vc[lo], vc[hi])
+        return np.array([[-v, v]])
+
+    grid = np.unique(np.concatenate([np.linspace(0, bounds[-1], 1501), bounds]))
+    path = ta.SplineInterpolator(bounds, bounds[:, None])
+    inst = algo.TOPPRA([constraint.JointVelocityConstraintVarying(vlim),
+                        constraint.JointAccelerationConstraint(np.array([[-a_max, a_max]]))], path,
+                       gridpoints=grid)
+    _, sd, _ = inst.compute_parameterization(0, 0)
+    t_toppra = float(np.sum(2 * np.diff(grid) / (sd[1:] + sd[:-1])))
+    xcap = np.full(len(vcaps) + 1, np.inf)
+    xcap[0] = xcap[-1] = 0.0
+    length, acap = np.diff(bounds), np.full(len(vcaps), a_max)
+    x = boundary_speeds(length, vc, acap, xcap)
+    t_scan = trapezoids(length, vc, acap, x, np.zeros(len(vcaps), np.int8), 0).end_time
+    assert t_scan == pytest.approx(t_toppra, rel=5e-3)
+    # the speed profiles agree at toppra's grid points
+    k = np.clip(np.searchsorted(bounds, grid, side="right") - 1, 0, len(vcaps) - 1)
+    fwd = np.sqrt(np.maximum(x[k] + 2 * a_max * (grid - bounds[k]), 0))
+    bwd = np.sqrt(np.maximum(x[k + 1] + 2 * a_max * (bounds[k + 1] - grid), 0))
+    ours = np.minimum(np.minimum(fwd, bwd), vc[k])
+    away = np.min(np.abs(grid[:, None] - bounds[None, 1:-1]), axis=1, initial=np.inf) > 2 * (grid[1] - grid[0])
+    assert np.max(np.abs(ours - sd)[away]) <= 0.02 * vc.max()
+
+
+def test_o3_is_never_slower_than_o2_and_verifies() -> None:
+    cmds = [line((10, 10), (20, 10), 6000), arc((20, 10), (25, 15), (20, 15), 1, 6000), line((25, 15), (25, 30), 6000)]
+    t2 = plan(cmds, level=2).duration_total_s
+    t3 = plan(cmds, level=3).duration_total_s  # plan() asserts zero verify violations
+    assert t3 <= t2 * (1 + 1e-12)
+
+
+@pytest.mark.parametrize("feed", [1e-21, 0.0, -5.0, 1e12])
+def test_absurd_feeds_give_diagnostics_not_exceptions(feed: float) -> None:
+    cmds = polyline([(10, 10), (11, 10), (11, 11)], feed)
+    sink = DiagnosticSink()
+    for level in range(4):
+        traj = plan_commands(cmds, GENERIC, level, sink)
+        assert np.all(np.isfinite(traj.duration_s)) and traj.duration_total_s > 0
+        report = verify_trajectory(traj, cmds, GENERIC, sink, corner_rule=effective_corner_rule(GENERIC, level),
+                                   check_dynamics=level > 0, jerk_limited=level >= 2)
+        assert report.count == 0
+    codes = {d.code for d in sink}
+    assert codes & {"W0606", "E0604", "N0603"}
+
+
+def test_narrow_filter_where_speeds_change_little() -> None:
+    # 0.3 mm zig-zag at 9000 mm/min: the speed moves between close corner caps, where a
+    # narrow jerk filter (less acceleration, shorter forced cruises) is the faster one
+    from cncc.passes.planning import fir
+
+    cmds = polyline([(20 + 0.3 * i, 30 + 0.05 * (i % 3)) for i in range(30)], 9000)
+    t_best = plan(cmds, level=2).duration_total_s
+    shares = fir.TF_SHARES
+    try:
+        fir.TF_SHARES = (1.0,)
+        t_wide = plan(cmds, level=2).duration_total_s
+    finally:
+        fir.TF_SHARES = shares
+    assert t_best < 0.95 * t_wide

@@ -40,7 +40,7 @@ def test_verify_passes_planner_output(name: str, machine_name: str, level: int) 
     traj, cmds, machine = _plan(name, machine_name, level)
     sink = DiagnosticSink()
     report = verify_trajectory(traj, cmds, machine, sink, corner_rule=effective_corner_rule(machine, level),  # type: ignore[arg-type]
-                               check_dynamics=level > 0)
+                               check_dynamics=level > 0, jerk_limited=level >= 2)
     assert report.count == 0, [d.message for d in sink]
 
 
@@ -105,3 +105,37 @@ def test_catches_continuity_and_corner() -> None:
     turned = Trajectory(good.t0_s, good.duration_s, good.p0_mm, v0, good.a0_mm_s2, good.j_mm_s3,
                         good.cmd_index, good.limit)
     assert dg.VERIFY_CORNER in _codes(turned, cmds, corner_rule=effective_corner_rule(machine, 2))  # type: ignore[arg-type]
+
+
+def _two_phases(a_second: float) -> Trajectory:
+    """X moves at 10 mm/s for 10 ms, then keeps going with acceleration ``a_second``."""
+    z = np.zeros((2, 6))
+    p0, v0, a0 = z.copy(), z.copy(), z.copy()
+    p0[:, :2] = [[10.0, 10.0], [10.1, 10.0]]
+    v0[:, 0] = 10.0
+    a0[1, 0] = a_second
+    return Trajectory(np.array([0.0, 0.01]), np.array([0.01, 0.001]), p0, v0, a0, z.copy(),
+                      np.zeros(2, np.int64), np.zeros(2, np.int8))
+
+
+def test_catches_acceleration_step() -> None:
+    jt = 50000.0 * GENERIC.interpolation_period_s  # X jerk limit times one period: 50 mm/s^2
+    assert jt == pytest.approx(50.0)
+    bad = _two_phases(4 * jt)  # steps 0 -> 200 at t = 10 ms (and 200 -> 0 at the end)
+    ok = _two_phases(jt / 2)
+    cmds = _line_for(bad)
+    assert dg.VERIFY_ACCEL_STEP in _codes(bad, cmds)
+    assert dg.VERIFY_ACCEL_STEP not in _codes(bad, cmds, jerk_limited=False)  # trapezoids step by design
+    assert dg.VERIFY_ACCEL_STEP not in _codes(ok, _line_for(ok))
+
+
+def test_catches_a_point_outside_the_arc_sweep() -> None:
+    quarter = [arc((40, 30), (30, 40), (30, 30), 1, 60000)]  # counter-clockwise, 0 .. 90 degrees
+    on_circle_outside = _one_phase(v=0.001, p=(20.0, 30.0), dur=0.001)  # 180 degrees: radial error 0
+    assert dg.VERIFY_PATH in _codes(on_circle_outside, quarter)
+    c45 = 30 + 10 * np.cos(np.pi / 4)
+    inside = _one_phase(v=0.0, p=(c45, c45), dur=0.001)
+    assert dg.VERIFY_PATH not in _codes(inside, quarter)
+    clockwise = [arc((40, 30), (30, 40), (30, 30), -1, 60000)]  # the other 270 degrees
+    assert dg.VERIFY_PATH not in _codes(on_circle_outside, clockwise)
+    assert dg.VERIFY_PATH in _codes(inside, clockwise)

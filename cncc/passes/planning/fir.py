@@ -315,12 +315,15 @@ def _state(ph: Phases, cum_int: FloatArray, total_s: float, t: FloatArray
 
 
 def merge_phases(ph: Phases) -> Phases:
-    """Join consecutive phases of equal acceleration, jerk and limit (the same polynomial)."""
+    """Join consecutive phases of equal acceleration, jerk and limit whose speed is
+    continuous (the same polynomial)."""
     n = ph.t0.size
     if n < 2:
         return ph
     new = np.ones(n, bool)
-    new[1:] = (ph.a0[1:] != ph.a0[:-1]) | (ph.j[1:] != ph.j[:-1]) | (ph.limit[1:] != ph.limit[:-1])
+    v_prev = ph.v0[:-1] + ph.a0[:-1] * ph.dur[:-1] + ph.j[:-1] * ph.dur[:-1] ** 2 / 2
+    jump = np.abs(ph.v0[1:] - v_prev) > 1e-12 * np.maximum(np.abs(ph.v0[1:]), 1e-300)
+    new[1:] = (ph.a0[1:] != ph.a0[:-1]) | (ph.j[1:] != ph.j[:-1]) | (ph.limit[1:] != ph.limit[:-1]) | jump
     if new.all():
         return ph
     start = np.flatnonzero(new)
@@ -349,6 +352,12 @@ def _snap(knots: FloatArray) -> FloatArray:
 
 
 def _filter(ph: Phases, tf: float, total_s: float) -> Phases:
+    """The moving average of width ``tf`` of the unfiltered profile, as exact cubic phases.
+
+    Positions and speeds at the knots come from the (continuous) position and its time
+    integral; acceleration and jerk from samples at the middle of each knot interval,
+    where no unfiltered phase boundary can be confused with its neighbour by rounding.
+    """
     d, v0, a = ph.dur, ph.v0, ph.a0
     piece = ph.s0 * d + v0 * d**2 / 2 + a * d**3 / 6
     cum_int = np.concatenate([[0.0], np.cumsum(piece)])
@@ -356,10 +365,12 @@ def _filter(ph: Phases, tf: float, total_s: float) -> Phases:
     knots = _snap(np.unique(np.concatenate([ph.t0, ph.t0 + tf, [end, end + tf]])))
     knots = knots[knots < end + tf - KNOT_SNAP_S]
     dur = np.diff(np.concatenate([knots, [end + tf]]))
-    s1, v1, _a1, i1 = _state(ph, cum_int, total_s, knots)
-    s2, v2, _a2, i2 = _state(ph, cum_int, total_s, knots - tf)
+    s1, _, _, i1 = _state(ph, cum_int, total_s, knots)
+    s2, _, _, i2 = _state(ph, cum_int, total_s, knots - tf)
     mid = knots + dur / 2
-    _, _, am1, _ = _state(ph, cum_int, total_s, mid)
-    _, _, am2, _ = _state(ph, cum_int, total_s, mid - tf)
+    _, vm1, am1, _ = _state(ph, cum_int, total_s, mid)
+    _, vm2, am2, _ = _state(ph, cum_int, total_s, mid - tf)
     k = np.clip(np.searchsorted(ph.t0, mid - tf / 2, side="right") - 1, 0, ph.t0.size - 1)
-    return Phases(knots, dur, (i1 - i2) / tf, (s1 - s2) / tf, (v1 - v2) / tf, (am1 - am2) / tf, ph.limit[k])
+    jerk = (am1 - am2) / tf
+    acc = (vm1 - vm2) / tf - jerk * dur / 2
+    return Phases(knots, dur, (i1 - i2) / tf, (s1 - s2) / tf, acc, jerk, ph.limit[k])

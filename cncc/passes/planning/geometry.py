@@ -28,6 +28,10 @@ from cncc.ir.trajectory import FloatArray
 from cncc.passes.blend import forces_stop
 from cncc.passes.planning.limits import AxisLimits
 
+MIN_FEED_MM_MIN = 0.1
+"""Smallest feed the planners take (mm/min): below it the times are absurd and the
+floating-point error of hour-long phases reaches the verify tolerances."""
+
 NORMAL_SHARE = 0.5
 """Share of each axis' acceleration that velocity steps at chord vertices may use."""
 
@@ -154,6 +158,10 @@ def _feed_mm_s(cmd: Linear | Arc, machine: MachineModel, sink: DiagnosticSink, w
         sink.emit(dg.BAD_FEED, cmd.span, f"feed {feed:g} mm/min is not positive; using the machine default "
                   f"{machine.default_feed_mm_min:g} mm/min")
         feed = machine.default_feed_mm_min
+    if feed < MIN_FEED_MM_MIN:
+        sink.emit(dg.FEED_TOO_SMALL, cmd.span, f"feed {feed:g} mm/min is below the smallest feed the planner "
+                  f"handles; planned at {MIN_FEED_MM_MIN:g} mm/min")
+        feed = MIN_FEED_MM_MIN
     if feed > machine.max_feed_mm_min and "feed" not in warned:
         warned.add("feed")
         sink.emit(dg.FEED_CLAMPED, cmd.span, f"feed {feed:g} mm/min is above the machine's cap "
