@@ -128,13 +128,15 @@ def _point(start: Vec6, end: Vec6, center: Vec6, plane: Plane, turns: int, total
     return (p[0], p[1], p[2], p[3], p[4], p[5])
 
 
-def helix_feed_ratio(start: Vec6, end: Vec6, center: Vec6, plane: Plane, turns: int) -> float:
+def helix_feed_ratio(start: Vec6, end: Vec6, center: Vec6, plane: Plane, turns: int,
+                     sweep_rad: float | None = None) -> float:
     """In-plane length / path length of a helix (1 for a flat arc)."""
     rise = end[plane.normal] - start[plane.normal]
     if rise == 0.0:
         return 1.0
     i, j = plane.first, plane.second
-    planar = sweep(start, end, center, plane, turns) * math.hypot(start[i] - center[i], start[j] - center[j])
+    swept = sweep(start, end, center, plane, turns) if sweep_rad is None else sweep_rad
+    planar = swept * math.hypot(start[i] - center[i], start[j] - center[j])
     if planar <= 1e-9:  # a degenerate arc of no radius: the feed is left as it is
         return 1.0
     return planar / math.hypot(planar, rise)

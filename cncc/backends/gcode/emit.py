@@ -393,20 +393,26 @@ class GcodeEmitter:
         closes = t.full_circle and not ({i, j} & self.offgrid)  # a full circle can end where it starts
         form = ArcForm(single_quadrant=t.single_quadrant, r_form=t.arc_form == "r", full_circle=closes,
                        turns_word=bool(t.turns_word),
-                       min_piece_mm=10.0 ** (1 - self.decimals) * self.units.mm_per_unit)
+                       min_piece_mm=max(10.0 ** (1 - self.decimals) * self.units.mm_per_unit,
+                                        float(t.option("arc_ij_tolerance_mm", 0.0))))
         pieces = split(a.start, a.end, a.center, a.plane, a.turns, form)
         if len(pieces) > 1:
             self.warn(dg.XL_ARC_SPLIT, f"{t.name} output: an arc is written as {len(pieces)} pieces")
-        feed = a.feed_mm_min
-        if t.option("helix_feed", "projection") == "projection":
-            feed *= helix_feed_ratio(a.start, a.end, a.center, a.plane, a.turns)
+        projection = t.option("helix_feed", "projection") == "projection"
         code = t.code("arc_ccw" if a.turns > 0 else "arc_cw")
+        n = a.plane.normal
         for piece in pieces:
             offsets = self._centre_offsets(a, piece.start)
+            rise_from = self._start_at(piece.start)[n]
             words = [code, *self._axes(piece.start, piece.end, always=(i, j))]  # full circles need them too
             words += self._centre_words(a.plane, offsets, piece.sweep_rad, form)
             if piece.turns_extra:
                 words.append(f"{t.turns_word}{piece.turns_extra + 1}")
+            feed = a.feed_mm_min
+            if projection:  # F of the projection, from the rise the target will see in this piece
+                rise_mm = (self._start_at(piece.end)[n] - rise_from) * 10.0 ** -self.decimals * self.units.mm_per_unit
+                feed *= helix_feed_ratio(piece.start, _with(piece.end, n, piece.start[n] + rise_mm), a.center,
+                                         a.plane, 1 if a.turns > 0 else -1, piece.sweep_rad)
             words.append(self._feed_word(feed))
             yield self.block(words)
 
@@ -493,6 +499,12 @@ class GcodeEmitter:
         if pitch:
             words.append(f"{pitch}{self.length(c.tap_pitch_mm)}")
         return words
+
+
+def _with(p: Vec6, axis: int, value: float) -> Vec6:
+    q = list(p)
+    q[axis] = value
+    return (q[0], q[1], q[2], q[3], q[4], q[5])
 
 
 def _tool(f: Frame) -> Vec6:
