@@ -28,7 +28,7 @@ from dataclasses import dataclass, replace
 from typing import ClassVar
 
 from cncc import diagnostics as dg
-from cncc.ir import Arc, Command, CompSide, Frame, Linear, Plane, Rapid, Vec6
+from cncc.ir import Arc, Command, CompSide, Cycle, Frame, Linear, Plane, Rapid, Vec6
 from cncc.passes import Pass, PassContext
 
 Mat3 = tuple[tuple[float, float, float], tuple[float, float, float], tuple[float, float, float]]
@@ -122,6 +122,9 @@ class AffinePass(Pass):
                 out = self._motion(c, aff, nf, last, ctx)
                 last = _base(out.end, nf)
                 yield out
+            elif isinstance(c, Cycle):  # kept whole for the G-code backend (untransformed frames only)
+                last = _base(c.holes[-1], nf)
+                yield c if nf is frame else replace(c, frame=nf)
             else:
                 yield c if nf is frame else replace(c, frame=nf)
 

@@ -39,7 +39,7 @@ from typing import ClassVar
 
 from cncc import diagnostics as dg
 from cncc.diagnostics import Related
-from cncc.ir import Arc, Command, CompSide, Frame, Linear, Plane, Rapid, Vec6
+from cncc.ir import Arc, Command, CompSide, Cycle, Frame, Linear, Plane, Rapid, Vec6
 from cncc.passes import Pass, PassContext, register
 from cncc.passes.comp_geometry import (
     EPS,
@@ -183,6 +183,8 @@ class _Comp:
         """Emit ``c`` uncompensated, starting where the tool is (optionally ending at ``plane_end``)."""
         nf = self._frame(c.frame)
         if not isinstance(c, Rapid | Linear | Arc):
+            if isinstance(c, Cycle):  # kept whole for the G-code backend: the tool ends at the last hole
+                self.last = _base(c.holes[-1], nf)
             yield c if nf is c.frame else replace(c, frame=nf)
             return
         start = self._start(c, nf)
