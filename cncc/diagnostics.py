@@ -92,6 +92,8 @@ VENDOR_CYCLE = _define("E0255", E, "a code the manual names without defining its
 ASSUMED = _define("W0256", W, "the manual leaves this open; the spec's assumption is used (a dialect option)")
 CORNER_INSERT = _define("E0257", E, "a G10 corner that cannot be inserted (next move not a line, setback too long, "
                         "no corner)")
+CAVITY_BAD_WORD = _define("E0258", E, "a SERIES 8 G34-G36 cavity that cannot be milled (size, step-over, depth per "
+                          "pass or tool radius missing or out of range)")
 
 # --- E04xx: canned cycles and hole patterns ----------------------------------------
 CYCLE_NO_R = _define("E0401", E, "a drilling block without an R level")

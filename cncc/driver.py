@@ -308,6 +308,7 @@ def frame_passes(dialect: Dialect, machine_coords: bool) -> list[Any]:
     return out
 
 
+                          outer_arc_below_deg=float(dialect.option("comp_outer_arc_below_deg", 0.0)),
 def guessed_dialect(src: SourceFile, opts: Options, sink: DiagnosticSink) -> Dialect | None:
     from cncc.frontend.detect import guess_dialect
 

@@ -12,7 +12,9 @@ produces the tool-centre path, with frames whose compensation is off.
   elements are cut at their intersection when the corner is inside; outside, the
   intersection is used up to a 90 degree turn and the acute corner gets two
   extensions of length r joined by a line (``outer_corner="intersection"``), or an
-  arc of radius r about the corner (``outer_corner="arc"``).  Outside corners whose
+  arc of radius r about the corner (``outer_corner="arc"``); with ``outer_arc_below_deg``
+  set, an arc only where the included angle is below it and the intersection at every
+  other outside corner (SERIES 8's 70 degree rule, spec A-16).  Outside corners whose
   offset curves do not meet (two arcs) get the arc, with a warning.
 * **Look-ahead**: blocks without motion in the plane (a Z move, G43, M codes) are
   held back until the next element settles the corner, up to ``lookahead`` moves;
@@ -65,6 +67,7 @@ class CutterComp(Pass):
 
     name: ClassVar[str] = "cutter-comp"
     outer_corner: str = "intersection"  # or "arc": an arc about every outside corner
+    outer_arc_below_deg: float = 0.0  # > 0: an arc where the included angle is below it, else the intersection
     lookahead: int = 2  # moves without plane motion looked through for the next corner
     gouge_check: bool = True
     startup: str = "type_a"  # or "perpendicular": square off the start point, then the first element (SERIES 8)
@@ -277,7 +280,12 @@ class _Comp:
 
     def _outer(self, a: Element, b: Element, bc: Motion, theta: float, related: tuple[Related, ...]) -> list[Pt]:
         corner = a.p1
-        if self.opts.outer_corner != "arc" and abs(theta) <= math.pi / 2 + 1e-9:
+        arc = self.opts.outer_corner == "arc"
+        meet = not arc and abs(theta) <= math.pi / 2 + 1e-9
+        if self.opts.outer_arc_below_deg > 0:  # SERIES 8 A-16: an arc only at corners sharper than the limit
+            arc = 180.0 - math.degrees(abs(theta)) < self.opts.outer_arc_below_deg
+            meet = not arc
+        if meet:
             limit = 2.0 * a.r / max(math.cos(abs(theta) / 2), 1e-6)
             x = nearest(offset_intersections(a, b), corner)
             if x is not None and norm(sub(x, corner)) <= limit:
@@ -286,7 +294,7 @@ class _Comp:
             self.ctx.sink.emit(dg.COMP_CORNER_ARC, bc.span,
                                "the offset paths of this block and the previous one do not meet at this outside "
                                "corner; the tool goes round the corner on an arc", related)
-        elif self.opts.outer_corner != "arc":
+        elif not arc:
             e1 = add(a.q1, a.tangent(True), a.r)
             e2 = add(b.q0, b.tangent(False), -b.r)
             return [e1, e2, b.q0]

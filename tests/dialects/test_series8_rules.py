@@ -136,7 +136,10 @@ def test_g57_rejects_a_non_positive_factor() -> None:
 
 
 def test_vendor_cycles_need_a_macro_or_are_skipped() -> None:
-    for code in ("G34", "G35", "G36", "G43", "G49", "G50", "G51"):
+    for code in ("G34", "G35", "G36", "G43", "G49", "G50", "G51"):  # the spec's opaque reading
+        _, r = canon(f"{code} X1. Y1.\n", S8, dialect_options={"vendor_cycles": "error"})
+        assert codes(r) == ["E0255"], code
+    for code in ("G43", "G51"):  # cncc has no reading of these: refused even when the others expand
         _, r = canon(f"{code} X1. Y1.\n", S8)
         assert codes(r) == ["E0255"], code
     got, r = canon("G34 X1. Y1.\n", S8, dialect_options={"vendor_cycles": "skip"})

@@ -205,14 +205,30 @@ def _once(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
 
 
 # ---- codes without words, M codes -----------------------------------------------------------
-@handler("vendor_cycle")
-def _vendor(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
+def vendor_gate(it: Interpreter, ctx: BlockContext, c: CodeDef, reading: str = "") -> bool:
+    """A code the manual names without words: True when cncc expands it with its own reading
+    (``vendor_cycles = "expand"`` and a ``reading`` to announce, once per code and program);
+    otherwise the block is refused (``"error"``, E0255) or skipped with a warning (``"skip"``)."""
     ctx.axis_used = True
+    mode = state.option(it, "vendor_cycles", "expand")
     text = f"{c.name} ({c.summary.split(';')[0].rstrip('.')}): the manual defines no words for it"
-    if state.option(it, "vendor_cycles", "error") == "skip":
+    if mode == "expand" and reading:
+        st = _state(it)
+        if c.name not in st.vendor_noted:
+            st.vendor_noted.add(c.name)
+            it.sink.emit(dg.ASSUMED, ctx.span, f"{text}; cncc reads {reading} (docs/dialects-notes.md; "
+                                               'vendor_cycles = "error" refuses it, "skip" leaves it out)')
+        return True
+    if mode == "skip":
         it.sink.emit(dg.ASSUMED, ctx.span, f"{text}; the block is skipped (option vendor_cycles)")
     else:
         it.emit_error(dg.VENDOR_CYCLE, ctx.span, f"{text}; it needs a cycle macro")
+    return False
+
+
+@handler("vendor_cycle")
+def _vendor(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
+    vendor_gate(it, ctx, c)
 
 
 @handler("aux_s8")

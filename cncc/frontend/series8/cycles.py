@@ -39,8 +39,9 @@ _SHIFTED = (CycleKind.BORE_ORIENT_OUT, CycleKind.BACK_BORE_RETURN)
 _NO_DWELL = (CycleKind.DRILL, CycleKind.PECK_FIRST, CycleKind.TAP, CycleKind.CASE_BORE)  # no P in their formats
 
 
-def _store(it: Interpreter, ctx: BlockContext, kind: CycleKind) -> bool:
-    """Keep the block's cycle words; False after an error."""
+def store_levels(it: Interpreter, ctx: BlockContext) -> bool:
+    """Keep the block's R and Z levels (shared by the cycles, G34-G36 and G49/G50, A-18);
+    True when the levels are absolute (``cycle_levels_absolute`` or G90)."""
     st = state.get(it)
     assert st is not None
     data = st.cycle
@@ -53,6 +54,17 @@ def _store(it: Interpreter, ctx: BlockContext, kind: CycleKind) -> bool:
     if (w := ctx.words.get(ops.AXES[n])) is not None:
         base = data.r_mm if data.r_mm is not None else initial
         data.z_mm = rd.length_mm(w) + (0.0 if absolute else base)
+    return absolute
+
+
+def _store(it: Interpreter, ctx: BlockContext, kind: CycleKind) -> bool:
+    """Keep the block's cycle words; False after an error."""
+    st = state.get(it)
+    assert st is not None
+    data = st.cycle
+    rd = it.reader
+    absolute = store_levels(it, ctx)
+    initial = it.pos[it.frame.plane.normal]
     if (w := ctx.words.get("P")) is not None:
         if w.value < 0:
             it.emit_error(dg.BAD_DWELL, it.word_span(w), "dwell time must not be negative")
@@ -71,7 +83,7 @@ def _store(it: Interpreter, ctx: BlockContext, kind: CycleKind) -> bool:
     return True
 
 
-def _tool_length(it: Interpreter, ctx: BlockContext) -> None:
+def tool_length(it: Interpreter, ctx: BlockContext) -> None:
     """D in a cycle block: the tool-length row for this and later cycles (A-17)."""
     dw = ctx.words.get("D")
     if dw is None or dw.value < 0 or dw.value != int(dw.value):
@@ -98,7 +110,7 @@ def _select(inner: ops.Handler) -> ops.Handler:
         assert st is not None
         st.cycle_code = c
         it.modal = it.modal.with_(cycle=kind.value)
-        _tool_length(it, ctx)
+        tool_length(it, ctx)
         if not any(k in ctx.words for k in ops.AXES):
             _store(it, ctx, kind)
 
@@ -116,7 +128,7 @@ def _drill(inner: ops.MotionHandler) -> ops.MotionHandler:
             return
         kind = CycleKind(code.cycle)
         if not any(c.op == "cycle" for c in ctx.codes):
-            _tool_length(it, ctx)
+            tool_length(it, ctx)
         if not _store(it, ctx, kind):
             return
         placed = any(a in ctx.words for a in "XYA")
@@ -128,7 +140,7 @@ def _drill(inner: ops.MotionHandler) -> ops.MotionHandler:
             it.sink.emit(dg.ASSUMED, ctx.span, f"{code.name}: no X, Y or A in the block: the levels are stored, "
                                                "no hole is made (spec A-18)")
             return
-        _emit(it, ctx, code, kind, end)
+        emit(it, ctx, code, kind, (end,))
 
     return drill
 
@@ -159,7 +171,10 @@ def _levels_ok(it: Interpreter, ctx: BlockContext, code: CodeDef, kind: CycleKin
     return True
 
 
-def _emit(it: Interpreter, ctx: BlockContext, code: CodeDef, kind: CycleKind, end: Vec6) -> None:
+def emit(it: Interpreter, ctx: BlockContext, code: CodeDef, kind: CycleKind, ends: tuple[Vec6, ...],
+         pattern: str = "") -> None:
+    """One :class:`Cycle` of the cycle in force over the hole positions ``ends`` (a G49/G50
+    pattern gives several); the tool is left above the last one."""
     st = state.get(it)
     assert st is not None
     data = st.cycle
@@ -186,26 +201,30 @@ def _emit(it: Interpreter, ctx: BlockContext, code: CodeDef, kind: CycleKind, en
     start = it.pos
     level = start[n]
     retract = {CycleKind.CASE_BORE: data.z_mm, CycleKind.BACK_BORE_RETURN: level}.get(kind, data.r_mm)
-    hole = list(end)
-    hole[n] = retract
     shift = [0.0] * 6
     if kind in (CycleKind.BORE_ORIENT_OUT, CycleKind.BORE_ORIENT_RAPID_OUT, CycleKind.BACK_BORE_RETURN):
         shift[p.first], shift[p.second] = data.shift_mm
     frame = it.frame
     if frame.comp_side is not CompSide.OFF:
         frame = replace(frame, comp_side=CompSide.OFF, comp_radius_mm=0.0, comp_index=0)
-    placed: Vec6 = (hole[0], hole[1], hole[2], hole[3], hole[4], hole[5])
+    placed = tuple(_at_level(e, n, retract) for e in ends)
     ctx.out.append(Cycle(
-        ctx.span, frame, kind, code.name, start, (placed,), level, data.r_mm, data.z_mm, retract, feed,
+        ctx.span, frame, kind, code.name, start, placed, level, data.r_mm, data.z_mm, retract, feed,
         return_initial=False, peck_mm=(data.peck_mm or 0.0) if kind is CycleKind.PECK_FIRST else 0.0,
         first_depth_mm=data.first_mm if kind is CycleKind.PECK_FIRST else None,
         clearance_mm=float(state.option(it, "cycle_g83_clearance_mm", 1.27)) if kind is CycleKind.PECK_FIRST else 0.0,
         shift_mm=(shift[0], shift[1], shift[2], shift[3], shift[4], shift[5]),
         dwell_s=data.dwell_s if kind not in _NO_DWELL else 0.0,
-        spindle=spindle, spindle_rpm=rpm, tap_pitch_mm=pitch, motion=ops.block_motion(it, ctx)))
-    it.pos = placed
+        spindle=spindle, spindle_rpm=rpm, tap_pitch_mm=pitch, pattern=pattern, motion=ops.block_motion(it, ctx)))
+    it.pos = placed[-1]
     st.at_depth = kind is CycleKind.CASE_BORE
     st.moved = True
+
+
+def _at_level(p: Vec6, axis: int, level: float) -> Vec6:
+    q = list(p)
+    q[axis] = level
+    return (q[0], q[1], q[2], q[3], q[4], q[5])
 
 
 ops.HANDLERS["cycle"] = _select(ops.HANDLERS["cycle"])

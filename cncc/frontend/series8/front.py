@@ -21,8 +21,10 @@ from cncc.dialects import Dialect
 from cncc.frontend.interp import InterpOptions, Interpreter
 from cncc.frontend.parser import ParseOptions, Parser
 from cncc.frontend.series8 import arcs as _arcs  # noqa: F401  (registers the arc rules)
+from cncc.frontend.series8 import cavities as _cavities  # noqa: F401  (registers G34-G36)
 from cncc.frontend.series8 import codes as _codes  # noqa: F401  (registers the SERIES 8 ops)
 from cncc.frontend.series8 import cycles as _cycles  # noqa: F401  (registers G81-G89)
+from cncc.frontend.series8 import patterns as _patterns  # noqa: F401  (registers G49/G50)
 from cncc.frontend.series8 import state
 from cncc.frontend.series8.corners import Stream
 from cncc.frontend.syntax import Block
