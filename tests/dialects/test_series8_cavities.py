@@ -268,3 +268,12 @@ def test_a16_blunter_outside_corner_uses_the_intersection(tools: str) -> None:
     assert got[1][1][:2] == pytest.approx([2.0 + R_TOOL * math.tan(math.radians(50.0)), R_TOOL], abs=1e-4)
     old = _comp(100.0, tools, comp_outer_arc_below_deg=0.0)  # the shared rule: extensions past a 90 degree turn
     assert [v for _, a in old[1:3] for v in a[:2]] == pytest.approx([2.0, R_TOOL, 2.0 + R_TOOL, R_TOOL], abs=1e-4)
+
+
+def test_huge_cavities_and_grids_are_refused_before_they_are_built(tools: str) -> None:
+    _, r = canon("G00X0Y0Z1.\nF10\nG36 I10000. Z-1. R.1 D1 L.0001\nG34 I1. J1. Z-100. R.1 D1 K.00001\n", S8,
+                 tools_file=tools)
+    assert [c for c in codes(r) if c != "W0256"] == ["E0258", "E0258"]
+    _, r = canon(PATTERN.format(block="G50 X0 Y0 I1. J1. P9999 K9999"), S8,
+                 dialect_options={"rect_pattern_layout": "grid"})
+    assert [c for c in codes(r) if c != "W0256"] == ["E0409"]

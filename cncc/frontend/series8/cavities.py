@@ -38,6 +38,7 @@ from cncc.ir import Arc, Command, CompSide, Frame, Linear, Motion, Rapid, Vec6
 if TYPE_CHECKING:
     from cncc.frontend.interp import BlockContext, Interpreter
 
+MAX_MOVES = 1_000_000
 _READING = {
     "rect": "X Y as the centre, I J as the sizes, Z R as levels, K as the depth per pass, L as the step-over, "
             "D as the tool",
@@ -137,6 +138,8 @@ def _cavity(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
         if per_pass <= 0:
             _bad(it, ctx, c, "K", "the depth per pass K must be positive")
             return
+    if step is not None and _too_many(it, ctx, c, levels, per_pass, step):
+        return
     path = _path(it, ctx, c, radius, step) if step is not None else None
     feed = ops.feed_mm_min(it, ctx) if path is not None else None
     if path is None or feed is None:
@@ -146,6 +149,19 @@ def _cavity(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     st = state.get(it)
     assert st is not None
     st.moved = True
+
+
+def _too_many(it: Interpreter, ctx: BlockContext, c: CodeDef, levels: tuple[float, float], per_pass: float,
+              step: float) -> bool:
+    """Refuse a cavity of more than MAX_MOVES moves (a tiny L or K on a large cavity) before building it."""
+    sizes = [abs(it.reader.length_mm(w)) for k in "IJ" if (w := ctx.words.get(k)) is not None]
+    passes = cp.divisions(abs(levels[1] - levels[0]), per_pass) if per_pass > 0 else 1
+    moves = max(passes, 1) * (6 * cp.divisions(max(sizes, default=0.0), step) + 8)
+    if moves > MAX_MOVES:
+        _bad(it, ctx, c, "L", f"about {moves:.3g} moves (step-over {step:g} mm, {passes} passes): more than "
+                              f"{MAX_MOVES}; use a larger L or K")
+        return True
+    return False
 
 
 def _centre(it: Interpreter, ctx: BlockContext, c: CodeDef) -> tuple[float, float]:

@@ -39,6 +39,7 @@ if TYPE_CHECKING:
 
 Pt = tuple[float, float]
 MAX_COUNT = 9999
+MAX_HOLES = 100_000  # a grid of P x K holes
 _HOLES = ("X Y as the first hole (a corner), I J as the pitches, P K as the hole counts along the plane's "
           "axes, on the rectangle's edge; the cycle in force drills them")
 _FRAME = "X Y as a corner and I J as the sides of a rectangle milled at the current level"
@@ -127,6 +128,9 @@ def _pattern(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     p = it.frame.plane
     first = ops.target(it, ctx)
     grid = state.option(it, "rect_pattern_layout", "perimeter") == "grid"
+    if grid and n_u * n_v > MAX_HOLES:
+        it.emit_error(dg.PATTERN_BAD_WORD, ctx.span, f"{c.name}: {n_u} x {n_v} holes is more than {MAX_HOLES}")
+        return
     points = rect_holes((first[p.first], first[p.second]), (pu, pv), n_u, n_v, c.cycle == "ccw", grid)
     emit(it, ctx, code, kind, tuple(_place(first, p.first, p.second, q) for q in points), c.name)
 
