@@ -50,8 +50,10 @@ def _parser() -> argparse.ArgumentParser:
     t.add_argument("--decimals-mm", type=int, choices=range(1, 7), metavar="N", help="decimals in mm (default 3)")
     t.add_argument("--decimals-inch", type=int, choices=range(1, 7), metavar="N",
                    help="decimals in inch (default 4)")
+    t.add_argument("--target-option", action="append", default=[], metavar="NAME=VALUE",
+                   help="set an [options] entry of the -t dialect (as -fNAME=VALUE does for -x)")
     t.add_argument("--keep-subprograms", action="store_true",
-                   help="keep subprogram calls where the target can call them (not implemented yet: noted)")
+                   help="keep subprogram calls where the target can call them (docs/translation.md)")
     m = p.add_argument_group("macros and subprograms")
     m.add_argument("-D", dest="defines", action="append", default=[], metavar="#N=VALUE",
                    help="preset a macro variable, e.g. -D#100=5 (repeatable)")
@@ -141,6 +143,11 @@ def build_options(ns: argparse.Namespace, error: Any) -> Any:
             error(f"unknown flag -f{flag}")
     _macro_options(opts, ns, error)
     opts.units, opts.keep_subprograms = ns.units, ns.keep_subprograms
+    for item in ns.target_option:
+        key, sep, val = item.partition("=")
+        if not sep or not key:
+            error(f"--target-option {item}: expected NAME=VALUE")
+        opts.target_options[key.replace("-", "_")] = _value(val)
     opts.decimals_mm, opts.decimals_inch = ns.decimals_mm, ns.decimals_inch
     for w in ns.warnings:
         if w == "error":

@@ -59,7 +59,8 @@ class Options:
     # translation (--emit=gcode -t, cncc/backends/gcode, docs/translation.md)
     units: str = ""  # --units: "" as programmed, "mm" or "inch"
     line_numbers: bool = False  # -fline-numbers
-    keep_subprograms: bool = False  # --keep-subprograms (not implemented: noted)
+    keep_subprograms: bool = False  # --keep-subprograms: called programs kept where the target calls them
+    target_options: dict[str, Any] = field(default_factory=dict)  # --target-option NAME=VALUE (the -t dialect)
     decimals_mm: int | None = None  # --decimals-mm
     decimals_inch: int | None = None  # --decimals-inch
     pulse_format: str = "vcd"  # --emit=pulses: vcd | csv | npz | queue
@@ -210,7 +211,8 @@ def macro_options(opts: Options, sink: DiagnosticSink, sources: SourceMap | None
     include = tuple(opts.include_dirs) + dialect_library(opts)
     return MacroOptions(presets=dict(opts.defines), include_dirs=include, max_steps=opts.max_steps,
                         io_inputs=io, write_dir=opts.write_dir, load_source=load, protected_paths=protected,
-                        files_used=deps if deps is not None else [])
+                        files_used=deps if deps is not None else [],
+                        call_markers=opts.keep_subprograms and opts.emit == "gcode" and not opts.expand)
 
 
 def dialect_library(opts: Options) -> tuple[str, ...]:
@@ -263,24 +265,27 @@ def path_passes(cmds: Iterable[Command], dialect: Dialect, machine: MachineModel
 def output_dialect(dialect: Dialect, opts: Options, sink: DiagnosticSink) -> Dialect | None:
     """The dialect --emit=gcode writes: -t, else the input dialect."""
     if not opts.target or opts.target == dialect.name:
-        return dialect
-    return resolve_dialect(Options(dialect=opts.target), sink)
+        if not opts.target_options:
+            return dialect
+        try:
+            return dialect.with_options(opts.target_options)
+        except DialectError as exc:
+            sink.emit(dg.BAD_OPTION, NO_SPAN, str(exc))
+            return None
+    return resolve_dialect(Options(dialect=opts.target, dialect_options=opts.target_options), sink)
 
 
 def translation_prepare(cmds: Iterable[Command], dialect: Dialect, opts: Options,
                         sink: DiagnosticSink) -> tuple[Iterable[Command], frozenset[str]]:
     """Cycles the target cannot keep expanded now (before the transforms), notes for what cncc applies."""
     from cncc.backends.gcode import make_target
-    from cncc.backends.gcode.translate import kept_cycle_kinds, note, prepare
+    from cncc.backends.gcode.translate import kept_cycle_kinds, prepare
     from cncc.passes.expand_cycles import expand
 
     target = output_dialect(dialect, opts, sink)
     if target is None:
         return cmds, frozenset()
     tgt = make_target(target)
-    if opts.keep_subprograms:
-        note(sink, dg.XL_SUBPROGRAMS, NO_SPAN, "--keep-subprograms: cncc cannot keep subprogram calls yet; "
-                                               "the output is flattened")
     return prepare(cmds, tgt, expand, sink), kept_cycle_kinds(tgt)
 
 
@@ -377,7 +382,8 @@ def run_backend(cmds: Iterator[Command], src: SourceFile, sources: SourceMap, di
             return iter(())
         eopts = EmitOptions(decimals_mm=opts.decimals_mm, decimals_inch=opts.decimals_inch,
                             line_numbers=opts.line_numbers, units=opts.units,
-                            same_dialect=target.name == dialect.name, expand_cycle=expand)
+                            same_dialect=target.name == dialect.name, expand_cycle=expand,
+                            keep_subprograms=opts.keep_subprograms and not opts.expand)
         if opts.expand and opts.annotate_time:  # -E --annotate-time
             from cncc.backends.timing import annotated_commands
 

@@ -26,7 +26,8 @@ arc_ij = st.tuples(st.sampled_from(["G02", "G03"]), chord, coord, st.sampled_fro
 arc_r = st.tuples(st.sampled_from(["G02", "G03"]), chord, coord, small, st.booleans()).map(
     lambda t: f"G90 G17 {t[0]} X[#5001+{t[1]}] Y[#5002+{t[2]}] R{'-' if t[4] else ''}[{t[3]}+"
               f"SQRT[{t[1]}*{t[1]}+{t[2]}*{t[2]}]/2] F300.")
-plane_arc = st.sampled_from(["G18 G02 I5. K0. F250.", "G19 G03 J0. K-4. F250.", "G90 G18 G03 X[#5001+3.] Z[#5003+3.] R3."])
+plane_arc = st.sampled_from(["G18 G02 I5. K0. F250.", "G19 G03 J0. K-4. F250.",
+                             "G90 G18 G03 X[#5001+3.] Z[#5003+3.] R3."])
 drill = st.tuples(st.sampled_from(["G81", "G83 Q2.", "G73 Q1.5", "G82 P0.3", "G85", "G86"]),
                   st.sampled_from(["G98", "G99"]), coord, coord).map(
     lambda t: f"G17 G90 G00 Z30.\n{t[1]} {t[0].split()[0]} X{t[2]} Y{t[3]} Z-5. R2. "

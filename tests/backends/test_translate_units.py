@@ -93,6 +93,8 @@ def test_line_numbers_and_line_length_limit() -> None:
     assert out.splitlines()[0].startswith("N10 ") and "W0811" in [d.code for d in sink]
 
 
-def test_keep_subprograms_is_noted() -> None:
-    r = compile_text("G01 X1. F100.\nM30\n", emit="gcode", target="fanuc", keep_subprograms=True)
-    assert r.ok and "N0808" in [d.code for d in r.sink]
+def test_keep_subprograms_without_calls_changes_nothing() -> None:
+    text = "G01 X1. F100.\nM30\n"
+    kept = compile_text(text, emit="gcode", target="fanuc", keep_subprograms=True)
+    plain = compile_text(text, emit="gcode", target="fanuc")
+    assert kept.ok and kept.output == plain.output and "N0808" not in [d.code for d in kept.sink]

@@ -83,6 +83,7 @@ class EmitOptions:
     units: str = ""  # "" as programmed, "mm" or "inch": convert
     same_dialect: bool = True  # M codes without a known meaning are copied only within one dialect
     expand_cycle: Callable[[Cycle], Iterable[Command]] | None = None  # for cycles the output cannot keep
+    keep_subprograms: bool = False  # mark call boundaries for cncc.backends.gcode.subprograms
 
 
 class GcodeEmitter:
@@ -108,6 +109,13 @@ class GcodeEmitter:
         self.n = 0
         self.span: Span = NO_SPAN
         self.warned: set[str] = set()
+        self.calls: list[tuple[str, str, Span]] = []  # (program key, name, calling block) per marked call
+        self.call_depth = 0  # inside marked calls: no N numbers (the bodies are compared as text)
+        self.inc_words: tuple[list[str], list[str]] | None = None  # (absolute, incremental) axis words
+        self.inc_poison = False  # the next block has no incremental form (cycles, unwritable starts)
+        self.sync_poison = False  # blocks setting units and offsets have none either
+        self.in_alt = False
+        self.all_axes = False  # the next move writes X, Y and Z (the first move of a call)
 
     # ---- numbers --------------------------------------------------------------------------
     @property
@@ -131,7 +139,7 @@ class GcodeEmitter:
         note = self.t.comment(comment) if comment else ""
         if note:
             text = f"{text} {note}" if text else note
-        if self.opt.line_numbers and text:
+        if self.opt.line_numbers and text and not self.call_depth and not self.in_alt:
             self.n += self.opt.line_step
             if self.n > self.t.max_line_number:
                 self.warn(dg.XL_LINE_NUMBER, f"N{self.n} is beyond {self.t.name}'s largest N{self.t.max_line_number}")
@@ -139,6 +147,11 @@ class GcodeEmitter:
         if self.t.dialect.block_end and words:
             text += self.t.dialect.block_end
         self._check_length(text, words)
+        if self.call_depth and not self.in_alt:  # the incremental form rides along (subprograms.py)
+            from cncc.backends.gcode.subprograms import incremental_form
+
+            alt = incremental_form(self, words, comment)
+            return f"{text}\n{alt}"
         return text + "\n"
 
     def _check_length(self, text: str, words: list[str]) -> None:
@@ -252,7 +265,11 @@ class GcodeEmitter:
             yield self.block([], f"{name} not translated")
 
     def _set_mode(self, cmd: SetMode) -> Iterator[str]:
-        if cmd.name == "path_mode":
+        if cmd.name in ("call_begin", "call_end") and self.opt.keep_subprograms:
+            from cncc.backends.gcode.subprograms import call_marker
+
+            yield call_marker(self, cmd)
+        elif cmd.name == "path_mode":
             op = "exact_stop_mode" if cmd.value is PathMode.EXACT_STOP else "continuous_mode"
             if self.t.has(op):
                 yield self.block([self.t.code(op)])
@@ -278,13 +295,16 @@ class GcodeEmitter:
             self.cycle_initial = None
         if self.forced is None and f.units is not self.units:
             self.units = f.units
+            self.sync_poison = True
             lines.append(self.block([self.code("inch" if f.units is Units.INCH else "metric", "units")]))
             self.feed = None
             self.qpos = None
         if f.plane is not self.plane:
             self.plane = f.plane
             lines.append(self.block([self.code(_PLANE_OPS[f.plane], "the plane")]))
+        self.sync_poison = True  # units and offsets have no incremental form
         lines += self._offsets(f, start)
+        self.sync_poison = False
         if lines and self.cycle_initial is not None:
             lines.insert(0, self.block([self.t.code("cycle_off")]))
             self.cycle_initial = None
@@ -363,12 +383,17 @@ class GcodeEmitter:
         """Words for the axes whose written value changes (the first plane axis for a null move)."""
         qpos = self._start_at(start)
         q = self._at(end)
-        changed = [i for i in range(6) if q[i] != qpos[i] or i in always]
+        changed = [i for i in range(6) if q[i] != qpos[i] or i in always or (self.all_axes and i < 3)]
+        self.all_axes = False
         if not changed:
             changed = [self.plane.first]
+        words = [f"{AXES[i]}{self.text(q[i], i)}" for i in changed]
+        if self.call_depth:
+            self.inc_poison = bool(self.offgrid & set(changed))  # increments from an unwritable position
+            self.inc_words = (words, [f"{AXES[i]}{self.text(q[i] - qpos[i], i)}" for i in changed])
         self.offgrid -= set(changed)
         self.qpos = q
-        return [f"{AXES[i]}{self.text(q[i], i)}" for i in changed]
+        return words
 
     def _feed_word(self, feed_mm_min: float) -> str:
         if self.feed is not None and abs(self.feed - feed_mm_min) <= 1e-9 * max(1.0, feed_mm_min):
@@ -475,6 +500,7 @@ class GcodeEmitter:
                 *self._cycle_extra(c, cdef.words)]
         same = self.cycle_initial is not None and data == self.cycle_data
         for k, hole in enumerate(c.holes):
+            self.inc_poison = True
             q = self._at(hole)
             words = [f"{AXES[a]}{self.text(q[a], a)}" for a in range(6)
                      if a != n and (a in (first, second) or q[a] != (self.qpos or q)[a])]
@@ -516,4 +542,9 @@ def _tool(f: Frame) -> Vec6:
 def emit_gcode(cmds: Iterable[Command], dialect: Dialect, options: EmitOptions | None = None,
                sink: DiagnosticSink | None = None) -> Iterator[str]:
     """Yield program lines (with newlines) for ``cmds`` in ``dialect``."""
-    return GcodeEmitter(dialect, options, sink).emit(cmds)
+    em = GcodeEmitter(dialect, options, sink)
+    if em.opt.keep_subprograms:
+        from cncc.backends.gcode.subprograms import keep_subprograms
+
+        return keep_subprograms(em, cmds)
+    return em.emit(cmds)

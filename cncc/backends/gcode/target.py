@@ -18,7 +18,10 @@ lists the keys):
 ``line_length_counts``    ``"all"`` or ``"words"`` (grbl counts without spaces/comments)
 ``max_line_number``       largest N number (default 99999)
 ``program_numbers``       ``[low, high]`` O numbers (default [1, 9999])
-``max_call_depth``        subprogram nesting (default: ``[macro] max_call_depth`` or 4)
+``max_call_depth``        subprogram nesting (default: option ``max_call_depth`` or ``max_subprogram_depth``, else
+                          ``[macro] max_call_depth``, else 4)
+``subprogram_form``       kept subprograms: ``"m98"`` (default: M98 P / O...M99 after the main
+                          program) or ``"oword"`` (LinuxCNC o<n> sub/endsub/call before it)
 ``percent``               wrap the program in ``%`` lines (default false)
 ``prefer``                code names that win when several codes share one op
 ``ops``                   ``{ dwell = "G04" }``: the code that means a canonical op when the
@@ -125,12 +128,17 @@ def make_target(dialect: Dialect) -> Target:
         == "words",
         max_line_number=int(emit.get("max_line_number", dialect.option("max_line_number", 99999)) or 99999),
         program_numbers=(int(numbers[0]), int(numbers[1])),
-        max_call_depth=int(emit.get("max_call_depth", dict(macro).get("max_call_depth", 4))),
+        max_call_depth=int(emit.get("max_call_depth", _call_depth(dialect, macro))),
         percent=bool(emit.get("percent", False)),
         decimals_mm=int(emit.get("decimals_mm", 3)),
         decimals_inch=int(emit.get("decimals_inch", 4)),
         word_max=_word_max(dialect, emit),
     )
+
+
+def _call_depth(dialect: Dialect, macro: dict[str, Any]) -> int:
+    """Nesting of called programs: option max_call_depth, max_subprogram_depth, [macro] max_call_depth, 4."""
+    return int(dialect.option("max_call_depth", dialect.option("max_subprogram_depth", macro.get("max_call_depth", 4))))
 
 
 def _word_max(dialect: Dialect, emit: dict[str, Any]) -> dict[str, float]:

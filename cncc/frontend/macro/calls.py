@@ -22,7 +22,7 @@ from cncc.frontend.macro.frames import CallFrame, ModalCall
 from cncc.frontend.macro.program import Unit, program_key
 from cncc.frontend.macro.values import MacroError
 from cncc.frontend.syntax import Block, ProgramName, Word
-from cncc.ir import Wait
+from cncc.ir import SetMode, Wait
 from cncc.source import Span
 
 if TYPE_CHECKING:
@@ -164,6 +164,14 @@ def push_call(ex: Executor, fr: CallFrame, kind: str, unit: Unit, index: int, re
     if args is not None:
         ex.vars.push_scope(args)
     ex.stack.append(new)
+    call_marker(ex, new, "call_begin")
+
+
+def call_marker(ex: Executor, fr: CallFrame, name: str) -> None:
+    """Record where a run of a called program begins or ends (translation keeps subprograms)."""
+    if ex.opts.call_markers and fr.call_span is not None:
+        key = f"{fr.unit.source.source_id}:{fr.entry}"
+        ex.out.append(SetMode(fr.call_span, ex.it.frame, name, (key, fr.name)))
 
 
 def _depth_ok(ex: Executor, kind: str, span: Span) -> bool:
@@ -283,7 +291,9 @@ def do_return(ex: Executor, fr: CallFrame, label: int | None, span: Span) -> Non
         else:
             ex.end_program(span)
         return
+    call_marker(ex, fr, "call_end")
     if fr.repeats_left > 0 and label is None:
+        call_marker(ex, fr, "call_begin")
         fr.repeats_left -= 1
         fr.pc = fr.entry
         fr.block_loops.clear()

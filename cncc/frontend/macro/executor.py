@@ -78,6 +78,9 @@ class MacroOptions:
     files_used: list[str] = field(default_factory=list)  # filled: subprogram files loaded (-M)
     # called before (False) and after (True) each block runs (the language server records variable values)
     trace: Callable[[Executor, Block, bool], None] | None = None
+    # SetMode("call_begin"/"call_end", (program key, name)) around every run of a called program
+    # (translation --keep-subprograms); off: no marker reaches the IR
+    call_markers: bool = False
 
 
 def layout_for(dialect: Dialect) -> VariableLayout:

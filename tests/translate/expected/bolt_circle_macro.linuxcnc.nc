@@ -1,5 +1,5 @@
 (bolt circle: 8 holes on R40 about X50 Y50, drilled by a macro B loop)
-G17 G21 G90
+G17 G21 G90 G94
 T2
 M06
 S1200.

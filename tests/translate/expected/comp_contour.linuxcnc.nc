@@ -1,5 +1,5 @@
 (a pocket wall cut with cutter radius compensation - D1 = 5 mm)
-G17 G21 G90
+G17 G21 G90 G94
 T1
 M06
 S2000.

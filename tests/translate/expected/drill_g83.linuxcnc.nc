@@ -1,5 +1,5 @@
 (peck drilling a 2 x 3 plate - G83 with G99/G98)
-G17 G21 G90
+G17 G21 G90 G94
 T2
 M06
 G43 H2

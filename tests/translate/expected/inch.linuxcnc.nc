@@ -1,5 +1,5 @@
 (an inch program: G70, arcs by I/J and R, a dwell)
-G17 G20 G90
+G17 G20 G90 G94
 S800.
 M03
 G00 Z0.5
