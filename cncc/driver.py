@@ -471,7 +471,8 @@ def pulse_backend(cmds: Iterator[Command], machine: MachineModel, opts: Options,
     """--emit=pulses: plan at -O<level>, then step/dir pulses; text to stdout, or streamed into -o FILE."""
     import io
 
-    from cncc.backends.pulses import FORMATS, MODES, generate_pulses, write_pulses
+    from cncc.backends.pulses import FORMATS, MODES, generate_pulses, reversal_pauses, write_pulses
+    from cncc.backends.timing import event_pauses
 
     fmt, to_stdout = opts.pulse_format, opts.output in (None, "-")
     problem = pulse_option_problem(opts, FORMATS, MODES)
@@ -481,7 +482,9 @@ def pulse_backend(cmds: Iterator[Command], machine: MachineModel, opts: Options,
         return iter(())
     traj, _ = plan_trajectory(cmd_list, machine, opts.opt_level, sink, verify=opts.verify,
                               soft_limits=opts.offsets_file is not None)
-    chunks = generate_pulses(traj, machine, mode=opts.pulse_mode, spans=[c.span for c in cmd_list], sink=sink)
+    pauses = event_pauses(cmd_list, traj.cmd_index, machine)  # the timing report's event times
+    chunks = generate_pulses(traj, machine, mode=opts.pulse_mode, spans=[c.span for c in cmd_list], sink=sink,
+                             pauses=pauses, reversals=reversal_pauses(traj, machine, mode=opts.pulse_mode))
     if to_stdout:
         buf = io.StringIO()
         write_pulses(chunks, fmt, buf)
@@ -507,8 +510,19 @@ def timing_runs(cmds: list[Command], machine: MachineModel, opts: Options, sink:
         with stage(f"planning {spec.label} on {model.name}", len(cmds)):
             traj, how = plan_trajectory(cmds, model, spec.level, sink, verify=opts.verify,
                                         soft_limits=opts.offsets_file is not None)
-        runs.append(Run(spec.label, model, spec.level, traj, how, nominal=spec.level == 0))
+        runs.append(Run(spec.label, model, spec.level, traj, how, nominal=spec.level == 0,
+                        reversals=reversal_events(traj, model, opts)))
     return runs
+
+
+def reversal_events(traj: Any, machine: MachineModel, opts: Options) -> tuple[tuple[int, int, str], ...]:
+    """(command, ns, what) of the reversal pauses --emit=pulses inserts for ``traj`` on ``machine``."""
+    if not any(a.step.reversal_delay_s > 0 for a in machine.axes):
+        return ()
+    from cncc.backends.pulses import MODES, reversal_pauses
+
+    mode = opts.pulse_mode if opts.pulse_mode in MODES else "exact"
+    return tuple(reversal_pauses(traj, machine, mode=mode).by_command(traj.cmd_index))
 
 
 # ---- outputs ---------------------------------------------------------------------------------

@@ -9,7 +9,9 @@ Usage (what the driver does for ``--emit=pulses --pulse-format=vcd``)::
 
     from cncc.backends.pulses import generate_pulses, write_pulses
 
-    chunks = generate_pulses(traj, machine, mode="exact", spans=spans, sink=sink)
+    chunks = generate_pulses(traj, machine, mode="exact", spans=spans, sink=sink,
+                             pauses=event_pauses(cmds, traj.cmd_index, machine),
+                             reversals=reversal_pauses(traj, machine, mode="exact"))
     write_pulses(chunks, "vcd", "out.vcd")      # or a binary/text stream
 
 * ``mode``: ``"exact"`` (each step when the position crosses its boundary) or
@@ -17,13 +19,19 @@ Usage (what the driver does for ``--emit=pulses --pulse-format=vcd``)::
   evenly).
 * ``spans``: ``spans[k]`` is the span of IR command ``k`` (the trajectory's
   ``cmd_index``), used to place diagnostics E07xx in ``sink``.
+* ``pauses``: ``(command index, ns)`` of the commands without motion that take time
+  (dwells, tool changes, spindle ramps, stops, waits; the driver takes them from
+  ``cncc.backends.timing.event_pauses``); the time line stops for them.
+* ``reversals``: the reversal pauses (SZGH Axis P68) from :func:`reversal_pauses`, which
+  the driver also hands to the timing report.
 * ``fmt``: one of :data:`FORMATS` — ``vcd``, ``csv``, ``npz``, ``queue``.
 
 numpy is imported by this package's modules only.
 """
 
 from cncc.backends.pulses.chunk import AxisSteps, PulseLayout, StepChunk
-from cncc.backends.pulses.generate import MODES, generate_pulses
+from cncc.backends.pulses.generate import MODES, generate_pulses, reversal_pauses
+from cncc.backends.pulses.pauses import ReversalPauses
 from cncc.backends.pulses.queue import DEFAULT_MAX_ERROR_NS, read_queue
 from cncc.backends.pulses.spec import AxisPulseSpec
 from cncc.backends.pulses.write import FORMATS, WriteStats, write_pulses
@@ -35,9 +43,11 @@ __all__ = [
     "AxisPulseSpec",
     "AxisSteps",
     "PulseLayout",
+    "ReversalPauses",
     "StepChunk",
     "WriteStats",
     "generate_pulses",
     "read_queue",
+    "reversal_pauses",
     "write_pulses",
 ]

@@ -77,11 +77,12 @@ class AxisSteps:
 
 @dataclass(frozen=True, slots=True)
 class StepChunk:
-    """The steps of every axis in one window ``[t_start_ns, t_end_ns)`` (warped time).
+    """The steps of every axis in one window ``[t_start_ns, t_end_ns)`` (machine time).
 
-    ``pause_ns`` is the reversal delay (SZGH Axis P68) inserted into the time line so
-    far, up to the end of this window: the planner does not know about it, so the
-    program takes this much longer than the trajectory says.
+    Up to the end of this window, ``pause_ns`` is the reversal delay (SZGH Axis P68)
+    inserted into the time line so far, ``event_ns`` the pauses of commands without
+    motion (dwells, tool changes, ...): the trajectory has neither, so
+    ``t_end_ns`` is the trajectory time plus both.
     """
 
     layout: PulseLayout
@@ -91,6 +92,7 @@ class StepChunk:
     horizon_ns: int
     axes: tuple[AxisSteps, ...]
     pause_ns: int = 0
+    event_ns: int = 0
 
     @property
     def step_count(self) -> int:

@@ -5,9 +5,10 @@ in interp mode) every axis' raw steps (:mod:`.solve` or :mod:`.interp`) go throu
 
 1. **reversals**: a stretch of motion whose direction differs from the axis' last
    one starts at the reversal instant ``t_r``;
-2. **reversal delay** (SZGH Axis P68): a pause of ``reversal_delay_s`` is inserted
-   into the time line at ``t_r`` (coinciding reversals pause once, the longest);
-   every later event of every axis moves by it;
+2. **pauses** (:mod:`.pauses`): the reversal delays (SZGH Axis P68, found for the whole
+   trajectory before the first window) and the pauses of commands without motion
+   (dwells, tool changes, ...: ``pauses=``) are inserted into the time line; every
+   later event of every axis moves by them;
 3. **backlash** (:mod:`.backlash`): ``backlash_steps`` pulses in the new direction,
    starting at ``t_r`` (mode A at a constant rate, mode B ramped), superposed on the
    commanded steps in exact mode (a burst still running at a window's end holds the
@@ -23,16 +24,35 @@ from __future__ import annotations
 
 from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
-from typing import Literal
 
 import numpy as np
 
 from cncc import diagnostics as diag
 from cncc.backends.pulses.backlash import B, BurstMerger, PeriodBacklash, Train, add_period_counts
 from cncc.backends.pulses.chunk import AxisSteps, PulseLayout, StepChunk
-from cncc.backends.pulses.interp import SZGH_PERIOD_S, interp_window, period_count
+from cncc.backends.pulses.interp import SZGH_PERIOD_S, interp_window, period_count, phase_at
 from cncc.backends.pulses.limits import Reporter, check_soft_limits, check_spacing
-from cncc.backends.pulses.solve import F64, I8, I32, I64, RawSteps, exact_axis_steps, segment, speed_max, windows
+from cncc.backends.pulses.pauses import (
+    ReversalKey,
+    ReversalPauses,
+    TimeLine,
+    delay_ns,
+    exact_reversals,
+    flips,
+    interp_reversals,
+)
+from cncc.backends.pulses.solve import (
+    F64,
+    I8,
+    I32,
+    I64,
+    RawSteps,
+    Segments,
+    exact_axis_steps,
+    segment,
+    speed_max,
+    windows,
+)
 from cncc.backends.pulses.spec import AxisPulseSpec, axis_spec, backlash_offsets_s
 from cncc.diagnostics import DiagnosticSink
 from cncc.ir.machine import Axis, MachineModel
@@ -77,12 +97,18 @@ def build_specs(traj: Trajectory, machine: MachineModel,
 
 def generate_pulses(traj: Trajectory, machine: MachineModel, *, mode: str = "exact",
                     spans: Sequence[Span] | None = None, sink: DiagnosticSink | None = None,
-                    chunk_steps: int = DEFAULT_CHUNK_STEPS, period_s: float = SZGH_PERIOD_S) -> Iterator[StepChunk]:
+                    chunk_steps: int = DEFAULT_CHUNK_STEPS, period_s: float = SZGH_PERIOD_S,
+                    pauses: Sequence[tuple[int, int]] = (),
+                    reversals: ReversalPauses | None = None) -> Iterator[StepChunk]:
     """Stream the step/dir pulses of ``traj`` on ``machine`` in chunks of about ``chunk_steps`` steps.
 
     ``mode`` is ``"exact"`` (every step at its crossing time) or ``"interp"`` (counted per
     ``period_s`` and spread evenly, as the SZGH interpolator).  ``spans[cmd_index]`` locates
-    the command responsible for a diagnostic in ``sink``.
+    the command responsible for a diagnostic in ``sink``.  ``pauses``: ``(command index, ns)``
+    of the commands without motion that take time (dwells, tool changes, ...), inserted into
+    the time line before the next command's motion.  ``reversals``: the reversal pauses from
+    :func:`reversal_pauses` for the same trajectory, machine and options (found here when
+    not given, or given for other options).
     """
     if mode not in MODES:
         raise ValueError(f"pulse mode must be one of {MODES}, not {mode!r}")
@@ -90,15 +116,51 @@ def generate_pulses(traj: Trajectory, machine: MachineModel, *, mode: str = "exa
     layout = PulseLayout(specs, mode)
     rep = Reporter(traj, spans, sink)
     check_soft_limits(traj, specs, cols, rep)
-    post = _Post(layout, rep, period_s)
     budget = max(int(chunk_steps), 16)
+    key = _reversal_key(mode, period_s, budget)
     if traj.phase_count == 0:
-        yield post.finish([RawSteps.empty() for _ in specs], 0.0, True)
+        post = _Post(layout, rep, period_s, TimeLine.of(ReversalPauses.none(key), traj.cmd_index, pauses))
+        yield post.finish([RawSteps.empty() for _ in specs], 0.0, True, 0)
         return
     if mode == "exact":
-        yield from _exact(traj, specs, cols, post, budget)
+        seg = segment(traj, _steps_per_mm(traj, specs, cols), budget)
+        wins = windows(seg, budget)
+        if reversals is None or reversals.key != key:
+            reversals = _none_or(key, specs) or exact_reversals(traj, seg, wins, specs, cols, key)
+        post = _Post(layout, rep, period_s, TimeLine.of(reversals, traj.cmd_index, pauses))
+        yield from _exact(traj, specs, cols, post, seg, wins)
     else:
+        if reversals is None or reversals.key != key:
+            reversals = _none_or(key, specs) or interp_reversals(traj, specs, cols, period_s, key)
+        post = _Post(layout, rep, period_s, TimeLine.of(reversals, traj.cmd_index, pauses))
         yield from _interp(traj, specs, cols, post, budget, period_s)
+
+
+def reversal_pauses(traj: Trajectory, machine: MachineModel, *, mode: str = "exact",
+                    chunk_steps: int = DEFAULT_CHUNK_STEPS, period_s: float = SZGH_PERIOD_S) -> ReversalPauses:
+    """The reversal pauses :func:`generate_pulses` inserts with the same arguments (none when no
+    axis has a ``reversal_delay_s``); ``by_command(traj.cmd_index)`` charges them to commands."""
+    if mode not in MODES:
+        raise ValueError(f"pulse mode must be one of {MODES}, not {mode!r}")
+    specs, cols = build_specs(traj, machine, None)
+    budget = max(int(chunk_steps), 16)
+    key = _reversal_key(mode, period_s, budget)
+    found = _none_or(key, specs)
+    if found is not None or traj.phase_count == 0:
+        return found or ReversalPauses.none(key)
+    if mode == "exact":
+        seg = segment(traj, _steps_per_mm(traj, specs, cols), budget)
+        return exact_reversals(traj, seg, windows(seg, budget), specs, cols, key)
+    return interp_reversals(traj, specs, cols, period_s, key)
+
+
+def _reversal_key(mode: str, period_s: float, budget: int) -> ReversalKey:
+    return (mode, period_s if mode == "interp" else 0.0, budget if mode == "exact" else 0)
+
+
+def _none_or(key: ReversalKey, specs: tuple[AxisPulseSpec, ...]) -> ReversalPauses | None:
+    """No reversal pauses when no axis has a delay (skips the search); None otherwise."""
+    return None if any(delay_ns(s) > 0 for s in specs) else ReversalPauses.none(key)
 
 
 def _steps_per_mm(traj: Trajectory, specs: tuple[AxisPulseSpec, ...], cols: tuple[int, ...]) -> F64:
@@ -109,13 +171,11 @@ def _steps_per_mm(traj: Trajectory, specs: tuple[AxisPulseSpec, ...], cols: tupl
 
 
 def _exact(traj: Trajectory, specs: tuple[AxisPulseSpec, ...], cols: tuple[int, ...], post: _Post,
-           budget: int) -> Iterator[StepChunk]:
-    seg = segment(traj, _steps_per_mm(traj, specs, cols), budget)
-    wins = windows(seg, budget)
+           seg: Segments, wins: list[tuple[int, int]]) -> Iterator[StepChunk]:
     for w, (lo, hi) in enumerate(wins):
         raws = [exact_axis_steps(traj, seg, lo, hi, i, spec) for spec, i in zip(specs, cols, strict=True)]
         t_end = float(traj.t0_s[seg.phase[hi - 1]] + seg.tb_s[hi - 1])
-        yield post.finish(raws, t_end, w == len(wins) - 1)
+        yield post.finish(raws, t_end, w == len(wins) - 1, int(seg.phase[hi - 1]))
 
 
 def _interp(traj: Trajectory, specs: tuple[AxisPulseSpec, ...], cols: tuple[int, ...], post: _Post,
@@ -131,29 +191,8 @@ def _interp(traj: Trajectory, specs: tuple[AxisPulseSpec, ...], cols: tuple[int,
     for k0 in range(0, max(total, 1), k_win):
         k1 = min(k0 + k_win, total)
         raws = interp_window(sub, specs, k0, k1, period_s)
-        yield post.finish(raws, k1 * period_s, k1 >= total)
-
-
-@dataclass(frozen=True, slots=True)
-class _Warp:
-    """Time line with the reversal pauses inserted: ``t -> t + pauses at or before t``."""
-
-    offset_s: float
-    ev_t_s: F64  # distinct pause instants, sorted
-    ev_cum_s: F64  # (e + 1,) cumulative pause before each instant
-
-    def __call__(self, t_s: F64, side: Literal["left", "right"] = "right") -> F64:
-        if self.ev_t_s.size == 0:
-            return t_s + self.offset_s
-        return t_s + self.offset_s + self.ev_cum_s[np.searchsorted(self.ev_t_s, t_s, side=side)]
-
-    def to_ns(self, t_s: F64) -> I64:
-        if self.ev_t_s.size == 0:
-            t = t_s * 1e9
-            t += self.offset_s * 1e9
-        else:
-            t = self(t_s) * 1e9
-        return np.rint(t, out=t).astype(np.int64)
+        phase_end = int(phase_at(sub, np.array([(k1 - 0.5) * period_s]))[0]) if k1 > k0 else 0
+        yield post.finish(raws, k1 * period_s, k1 >= total, phase_end)
 
 
 Flips = tuple[F64, I8, I32]  # reversal instants (s), new directions, phases
@@ -162,72 +201,46 @@ Flips = tuple[F64, I8, I32]  # reversal instants (s), new directions, phases
 class _Post:
     """Steps 1-5 of the module docstring, with the state carried between windows."""
 
-    def __init__(self, layout: PulseLayout, rep: Reporter, period_s: float) -> None:
+    def __init__(self, layout: PulseLayout, rep: Reporter, period_s: float, timeline: TimeLine) -> None:
         self.layout = layout
         self.rep = rep
         self.period_s = period_s
+        self.timeline = timeline
         self.state = [_AxisState() for _ in layout.specs]
         bursts = [backlash_offsets_s(s) for s in layout.specs]
         self.merger = [BurstMerger(off, length) for off, length in bursts]
         self.per_period = [PeriodBacklash.of(off, period_s) for off, _ in bursts]
-        self.offset_s = 0.0
         self.index = 0
         self.t_start_ns = 0
-        self.total_pause_s = 0.0
+        self.phase_end = 0  # the previous window's last phase
 
-    def finish(self, raws: list[RawSteps], t_end_s: float, final: bool) -> StepChunk:
+    def finish(self, raws: list[RawSteps], t_end_s: float, final: bool, phase_end: int) -> StepChunk:
+        """The chunk of a window ending at trajectory time ``t_end_s`` whose steps are in phases up to
+        ``phase_end`` (ignored when ``final``)."""
         specs = self.layout.specs
-        flips = [self._flips(raw, st) for raw, st in zip(raws, self.state, strict=True)]
+        flipped = [self._flips(raw, st) for raw, st in zip(raws, self.state, strict=True)]
         flags: list[B | None] = [None] * len(specs)
         if self.layout.mode == "interp":
             for i, raw in enumerate(raws):
-                raws[i], flags[i] = self._period_backlash(i, raw, flips[i], t_end_s, final)
-        ev_t, ev_cum = self._pauses(flips)
-        warp = _Warp(self.offset_s, ev_t, ev_cum)
-        end_ns = int(np.rint(warp(np.array([t_end_s]))[0] * 1e9))
-        axes = [self._axis(i, spec, raws[i], flips[i], flags[i], warp, end_ns, final) for i, spec in enumerate(specs)]
-        pause = float(ev_cum[-1]) if ev_cum.size else 0.0
-        self.offset_s += pause
-        self.total_pause_s += pause
+                raws[i], flags[i] = self._period_backlash(i, raw, flipped[i], t_end_s, final)
+        end_ns, rev_ns, ev_ns = self.timeline.window_end(t_end_s, phase_end, final)
+        axes = [self._axis(i, spec, raws[i], flipped[i], flags[i], end_ns, final) for i, spec in enumerate(specs)]
         horizon = FAR_FUTURE_NS if final else end_ns - self.layout.max_dir_setup_ns - 1
         holds = [m.hold_ns for m in self.merger if m.hold_ns is not None]
         if holds:
             horizon = min(horizon, min(holds) - self.layout.max_dir_setup_ns - 1)
-        chunk = StepChunk(self.layout, self.index, self.t_start_ns, end_ns, horizon, tuple(axes),
-                          round(self.total_pause_s * 1e9))
+        chunk = StepChunk(self.layout, self.index, self.t_start_ns, end_ns, horizon, tuple(axes), rev_ns, ev_ns)
         self.index += 1
         self.t_start_ns = end_ns
+        self.phase_end = max(self.phase_end, phase_end)
         return chunk
 
     @staticmethod
     def _flips(raw: RawSteps, st: _AxisState) -> Flips:
-        if raw.run_dir.size == 0:
-            return np.zeros(0), np.zeros(0, np.int8), np.zeros(0, np.int32)
-        prev = np.empty_like(raw.run_dir)
-        prev[0] = st.last_motion
-        prev[1:] = raw.run_dir[:-1]
-        sel = raw.run_dir != prev
-        st.last_motion = int(raw.run_dir[-1])
-        return raw.run_t_s[sel], raw.run_dir[sel], raw.run_phase[sel]
-
-    def _pauses(self, flips: list[Flips]) -> tuple[F64, F64]:
-        """Pause instants (sorted, distinct) and cumulative pause before each position."""
-        ts: list[F64] = []
-        ds: list[F64] = []
-        for spec, (t, _, _) in zip(self.layout.specs, flips, strict=True):
-            if spec.reversal_delay_s > 0 and t.size:
-                ts.append(t)
-                ds.append(np.full(t.shape, spec.reversal_delay_s))
-        if not ts:
-            return np.zeros(0), np.zeros(0)
-        t_all, d_all = np.concatenate(ts), np.concatenate(ds)
-        order = np.argsort(t_all, kind="stable")
-        t_all, d_all = t_all[order], d_all[order]
-        key = np.rint(t_all * 1e9)
-        starts = np.flatnonzero(np.diff(key, prepend=np.nan) != 0)
-        t_u = t_all[starts]
-        d_u = np.maximum.reduceat(d_all, starts)
-        return t_u, np.concatenate([[0.0], np.cumsum(d_u)])
+        found = flips(raw.run_t_s, raw.run_dir, raw.run_phase, st.last_motion)
+        if raw.run_dir.size:
+            st.last_motion = int(raw.run_dir[-1])
+        return found
 
     def _period_backlash(self, i: int, raw: RawSteps, flip: Flips, t_end_s: float,
                          final: bool) -> tuple[RawSteps, B | None]:
@@ -243,19 +256,24 @@ class _Post:
         counts: I64 = np.diff(np.append(raw.run_first, raw.t_s.shape[0])) * raw.run_dir.astype(np.int64)
         t_s, d, ph, bl, keys, run_dir, run_ph, first = add_period_counts(
             periods, counts, raw.run_phase, bl_k, bl_c, bl_ph, self.period_s)
+        if run_ph.size:  # a period with backlash pulses only keeps the flip's phase: never go back in phases
+            run_mono = np.maximum.accumulate(np.maximum(run_ph, self.phase_end))
+            if not np.array_equal(run_mono, run_ph):
+                run_ph = run_mono.astype(np.int32)
+                ph = np.repeat(run_ph, np.diff(np.append(first, t_s.shape[0])))
         run_t_s: F64 = keys.astype(np.float64) * self.period_s
         return RawSteps(t_s, d, ph, run_t_s, run_dir, run_ph, first), bl
 
-    def _axis(self, i: int, spec: AxisPulseSpec, raw: RawSteps, flip: Flips, flags: B | None, warp: _Warp,
+    def _axis(self, i: int, spec: AxisPulseSpec, raw: RawSteps, flip: Flips, flags: B | None,
               end_ns: int, final: bool) -> AxisSteps:
         st = self.state[i]
         merger = self.merger[i]
-        t_ns = warp.to_ns(raw.t_s)
+        t_ns = self.timeline.to_ns(raw.t_s, raw.phase)
         backlash = flags if flags is not None else np.zeros(t_ns.shape, np.bool_)
         train = Train(t_ns, raw.direction, raw.phase, backlash)
         dir_idx: I64 | None = None
         if self.layout.mode == "exact" and (not merger.idle or (merger.offsets_s.size and flip[0].size)):
-            train = merger.merge(train, warp(flip[0], "left"), flip[1], flip[2], end_ns, final)
+            train = merger.merge(train, self.timeline.to_s(flip[0], flip[2]), flip[1], flip[2], end_ns, final)
         else:
             dir_idx = self._run_changes(raw, st)
         if train.t_ns.size == 0:

@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from cncc.backends.pulses.solve import F64, RawSteps, poly
+from cncc.backends.pulses.solve import F64, I8, I32, I64, RawSteps, poly
 from cncc.backends.pulses.spec import AxisPulseSpec
 from cncc.ir.trajectory import Trajectory
 
@@ -36,22 +36,30 @@ def phase_at(traj: Trajectory, t_s: F64) -> F64:
     return np.clip(np.searchsorted(traj.t0_s, t_s, side="right") - 1, 0, traj.phase_count - 1)
 
 
-def interp_window(traj: Trajectory, specs: tuple[AxisPulseSpec, ...], k0: int, k1: int,
-                  period_s: float) -> list[RawSteps]:
-    """Steps of every axis for periods ``k0 .. k1 - 1`` (period ``k`` spans ``[k P, (k+1) P)``)."""
+def period_runs(traj: Trajectory, specs: tuple[AxisPulseSpec, ...], k0: int, k1: int,
+                period_s: float) -> tuple[F64, I32, list[tuple[I64, I64, I8]]]:
+    """Period start times ``(k1 - k0 + 1,)``, the phase at each period's middle ``(k1 - k0,)``, and
+    per axis the periods that step (index from ``k0``), their pulse counts and directions."""
     t = np.arange(k0, k1 + 1, dtype=np.float64) * period_s
     pos = sample_positions(traj, t)
     mid_phase = phase_at(traj, t[:-1] + period_s / 2).astype(np.int32)
-    out: list[RawSteps] = []
+    out: list[tuple[I64, I64, I8]] = []
     for i, spec in enumerate(specs):
-        n = spec.motor_steps(pos[:, i])
-        dn = np.diff(n)
+        dn = np.diff(spec.motor_steps(pos[:, i]))
         mv = np.flatnonzero(dn)
+        out.append((mv, np.abs(dn[mv]), np.sign(dn[mv]).astype(np.int8)))
+    return t, mid_phase, out
+
+
+def interp_window(traj: Trajectory, specs: tuple[AxisPulseSpec, ...], k0: int, k1: int,
+                  period_s: float) -> list[RawSteps]:
+    """Steps of every axis for periods ``k0 .. k1 - 1`` (period ``k`` spans ``[k P, (k+1) P)``)."""
+    t, mid_phase, runs = period_runs(traj, specs, k0, k1, period_s)
+    out: list[RawSteps] = []
+    for mv, counts, direction in runs:
         if mv.size == 0:
             out.append(RawSteps.empty())
             continue
-        counts = np.abs(dn[mv])
-        direction = np.sign(dn[mv]).astype(np.int8)
         pidx = np.repeat(np.arange(mv.shape[0]), counts)
         off = np.arange(pidx.shape[0], dtype=np.int64) - np.repeat(np.cumsum(counts) - counts, counts)
         spacing = period_s / counts

@@ -144,8 +144,24 @@ def windows(seg: Segments, budget: int) -> list[tuple[int, int]]:
     return list(itertools.pairwise(edges))
 
 
-def exact_axis_steps(traj: Trajectory, seg: Segments, lo: int, hi: int, i: int, spec: AxisPulseSpec) -> RawSteps:
-    """All steps of axis ``i`` over segments ``[lo, hi)``."""
+@dataclass(frozen=True, slots=True)
+class _Pieces:
+    """The monotone pieces of one axis over some segments that make steps; arrays ``(q,)``."""
+
+    c: I64  # segment (relative to ``lo``) of each piece
+    tau_a: F64  # piece start, local time in its phase
+    tau_e: F64  # piece end
+    counts: I64
+    direction: I8
+    na: I64  # motor step count at the piece start
+    pa: F64  # position at the piece start
+    pe: F64  # position at the piece end
+    t_abs: F64  # piece start, trajectory time
+    phase: I32
+
+
+def _pieces(traj: Trajectory, seg: Segments, lo: int, hi: int, i: int, spec: AxisPulseSpec) -> _Pieces | None:
+    """Split segments ``[lo, hi)`` of axis ``i`` at its velocity zeros; keep the pieces that step."""
     ph = seg.phase[lo:hi]
     p0, v0 = traj.p0_mm[ph, i], traj.v0_mm_s[ph, i]
     a0, jk = traj.a0_mm_s2[ph, i], traj.j_mm_s3[ph, i]
@@ -165,26 +181,43 @@ def exact_axis_steps(traj: Trajectory, seg: Segments, lo: int, hi: int, i: int, 
     dn = np.diff(n_all)
     mv = np.flatnonzero(dn)
     if mv.size == 0:
-        return RawSteps.empty()
+        return None
     c, tau_a = c[mv], pstart[mv]
-    counts = np.abs(dn[mv])
-    direction = np.sign(dn[mv]).astype(np.int8)
-    na = n_all[mv]
-    pa = ystart[mv]
-    va = v0[c] + tau_a * (a0[c] + tau_a * jk[c] / 2)
-    aa = a0[c] + tau_a * jk[c]
-    jj = jk[c]
-    length = pend[mv] - tau_a
-    tau_e = pend[mv]
-    end_state = (y_all[mv + 1] - pa, v0[c] + tau_e * (a0[c] + tau_e * jk[c] / 2), a0[c] + tau_e * jk[c])
-    t_abs = traj.t0_s[ph[c]] + tau_a
-    phase = ph[c].astype(np.int32)
+    return _Pieces(c, tau_a, pend[mv], np.abs(dn[mv]), np.sign(dn[mv]).astype(np.int8), n_all[mv], ystart[mv],
+                   y_all[mv + 1], traj.t0_s[ph[c]] + tau_a, ph[c].astype(np.int32))
+
+
+def axis_runs(traj: Trajectory, seg: Segments, lo: int, hi: int, i: int, spec: AxisPulseSpec) -> tuple[F64, I8, I32]:
+    """Start time, direction and phase of each stepping piece of axis ``i`` in segments ``[lo, hi)``.
+
+    The same runs as :func:`exact_axis_steps` returns (``run_t_s``, ``run_dir``, ``run_phase``),
+    without solving for the step times.
+    """
+    pc = _pieces(traj, seg, lo, hi, i, spec)
+    if pc is None:
+        return np.zeros(0), np.zeros(0, np.int8), np.zeros(0, np.int32)
+    return pc.t_abs, pc.direction, pc.phase
+
+
+def exact_axis_steps(traj: Trajectory, seg: Segments, lo: int, hi: int, i: int, spec: AxisPulseSpec) -> RawSteps:
+    """All steps of axis ``i`` over segments ``[lo, hi)``."""
+    pc = _pieces(traj, seg, lo, hi, i, spec)
+    if pc is None:
+        return RawSteps.empty()
+    ph = seg.phase[lo:hi]
+    k = ph[pc.c]
+    v0, a0, jj = traj.v0_mm_s[k, i], traj.a0_mm_s2[k, i], traj.j_mm_s3[k, i]
+    tau_a, tau_e, counts, direction = pc.tau_a, pc.tau_e, pc.counts, pc.direction
+    va = v0 + tau_a * (a0 + tau_a * jj / 2)
+    aa = a0 + tau_a * jj
+    length = tau_e - tau_a
+    end_state = (pc.pe - pc.pa, v0 + tau_e * (a0 + tau_e * jj / 2), a0 + tau_e * jj)
     dirf = direction.astype(np.float64)
-    d = _distances(spec, counts, direction, na, pa)
+    d = _distances(spec, counts, direction, pc.na, pc.pa)
     ends = (end_state[0] * dirf, end_state[1] * dirf, end_state[2] * dirf)
     u = piece_times(d, counts, va * dirf, aa * dirf, jj * dirf, length, ends)
-    u += np.repeat(t_abs, counts)
-    return RawSteps(u, np.repeat(direction, counts), np.repeat(phase, counts), t_abs, direction, phase,
+    u += np.repeat(pc.t_abs, counts)
+    return RawSteps(u, np.repeat(direction, counts), np.repeat(pc.phase, counts), pc.t_abs, direction, pc.phase,
                     np.cumsum(counts) - counts)
 
 

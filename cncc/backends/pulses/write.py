@@ -36,12 +36,13 @@ _NPZ_FIELDS = (("t_ns", np.int64), ("dir", np.int8), ("backlash", np.bool_), ("p
 
 @dataclass(slots=True)
 class WriteStats:
-    """What was written: steps per axis, chunks, the end time and the reversal pauses in it."""
+    """What was written: steps per axis, chunks, the end time, the reversal and event pauses in it."""
 
     steps: dict[str, int] = field(default_factory=dict)
     chunks: int = 0
     end_ns: int = 0
     pause_ns: int = 0
+    event_ns: int = 0
 
 
 def _counting(chunks: Iterable[StepChunk], stats: WriteStats) -> Iterable[StepChunk]:
@@ -51,6 +52,7 @@ def _counting(chunks: Iterable[StepChunk], stats: WriteStats) -> Iterable[StepCh
         stats.chunks += 1
         stats.end_ns = c.t_end_ns
         stats.pause_ns = c.pause_ns
+        stats.event_ns = c.event_ns
         yield c
 
 

@@ -20,10 +20,11 @@ from cncc.backends.timing.model import Run, TimingReport
 from cncc.diagnostics import DiagnosticSink
 from cncc.dialects import Dialect
 from cncc.ir import Command
+from cncc.ir.machine import MachineModel
 from cncc.source import NO_SPAN, SourceFile, SourceMap
 
-__all__ = ["FORMATS", "ColumnSpec", "Run", "TimingReport", "annotated_commands", "default_columns", "parse_compare",
-           "timing_report"]
+__all__ = ["FORMATS", "ColumnSpec", "Run", "TimingReport", "annotated_commands", "default_columns", "event_pauses",
+           "parse_compare", "timing_report"]
 
 FORMATS = ("text", "json", "html")
 
@@ -59,6 +60,14 @@ def timing_report(cmds: Sequence[Command], runs: Sequence[Run], src: SourceFile,
     from cncc.backends.timing.text import render_text
 
     return iter((render_text(rep, color),))
+
+
+def event_pauses(cmds: Sequence[Command], cmd_index: object, machine: MachineModel) -> list[tuple[int, int]]:
+    """``(command index, ns)`` of the timed events (dwells, tool changes, spindle ramps, stops, waits)
+    a report column over a trajectory with ``cmd_index`` counts: the pauses of the pulse time line."""
+    from cncc.backends.timing.aggregate import event_pauses as pauses
+
+    return pauses(cmds, cmd_index, machine)
 
 
 def annotated_commands(cmds: Sequence[Command], runs: Sequence[Run], sources: SourceMap, file: str,

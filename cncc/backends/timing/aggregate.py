@@ -7,16 +7,21 @@ start ``t0_s[k]`` to the next phase's start (the last phase up to the trajectory
 end), so phase times add up to ``Trajectory.duration_total_s`` exactly after
 rounding each boundary once.  A command with no phase is an event
 (:mod:`.events`); a command the planner gave phases (e.g. a dwell planned as a
-standstill) is timed by its phases only, never twice.
+standstill) is timed by its phases only, never twice.  The reversal pauses of a run
+(:attr:`Run.reversals`) are events of their own category, charged to the motion
+command in which the axis reverses.
+
+:func:`event_pauses` gives the same event times to the driver, which passes them to
+the pulse backend so that the pulse time line pauses where the report counts time.
 """
 
 from __future__ import annotations
 
 import re
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 
 from cncc import diagnostics as dg
-from cncc.backends.timing.events import CATEGORIES, EVENT_TYPES, EventTimer
+from cncc.backends.timing.events import CATEGORIES, EVENT_TYPES, Event, EventTimer
 from cncc.backends.timing.model import (
     LIMIT_KEYS,
     MAX_S,
@@ -37,7 +42,8 @@ from cncc.source import NO_SPAN, SourceMap
 
 MAX_NS = to_ns(MAX_S)
 _N_WORD = re.compile(r"\s*/?\s*([Nn]\s*\d+)")
-_EVENT_LIMIT = {"dwell": "program", "tool_change": "machine", "spindle": "machine", "wait": "operator"}
+_EVENT_LIMIT = {"dwell": "program", "tool_change": "machine", "spindle": "machine", "wait": "operator",
+                "reversal": "machine"}
 _MOTION_CAT = {Rapid: 0, Linear: 1, Arc: 2}
 _ZERO_MACHINE = MachineModel("categories only", (), tool_change_s=0.0, spindle_ramp_s=0.0)
 
@@ -132,13 +138,8 @@ def column(run: Run, cmds: Sequence[Command], index: ProgramIndex) -> Column:
         tool_idx = np.searchsorted(np.asarray(tools, dtype=np.int64), index.cmd_tool[ci])
         np.add.at(tool_cat, (tool_idx, cat_of_phase), dur)
     events, event_ns, operator_ns = [], 0, 0
-    timer = EventTimer(run.machine)
-    for i in index.event_cmds:
-        ev = timer.event(cmds[i])
-        if ev is None or covered[i]:
-            continue
-        ns = min(to_ns(ev.seconds), MAX_NS - event_ns)  # the events' sum stays within MAX_S too
-        if ns < to_ns(ev.seconds) or not 0.0 <= ev.seconds <= MAX_S:
+    for i, ns, ev, cut in timed_events(cmds, index.event_cmds, covered, run.machine, run.reversals):
+        if cut:
             clamped_cmd = i if clamped_cmd < 0 else clamped_cmd
         events.append((i, ns, ev.category, ev.operator_dependent, ev.what))
         event_ns += ns
@@ -153,6 +154,42 @@ def column(run: Run, cmds: Sequence[Command], index: ProgramIndex) -> Column:
     tool_ns = {t: {cat: int(tool_cat[k, j]) for j, cat in enumerate(CATEGORIES)} for t, k in tool_pos.items()}
     return Column(run, motion_ns, event_ns, line_ns, line_limit, cmd_ns, category_ns, tool_ns, operator_ns, events,
                   clamped or clamped_cmd >= 0, clamped_cmd)
+
+
+def timed_events(cmds: Sequence[Command], event_cmds: Sequence[int], covered: object, machine: MachineModel,
+                 reversals: Sequence[tuple[int, int, str]] = ()) -> Iterator[tuple[int, int, Event, bool]]:
+    """``(command index, ns, event, clamped)`` of every event a column counts, in command order.
+
+    ``event_cmds``: the commands that may be events, in order; ``covered[i]``: command ``i``
+    has phases (then its phases are its time).  The events' sum is kept within ``MAX_S``.
+    """
+    timer = EventTimer(machine)
+    found: list[tuple[int, int, Event]] = []
+    for i in event_cmds:
+        ev = timer.event(cmds[i])
+        if ev is not None and not covered[i]:  # type: ignore[index]
+            found.append((i, -1, ev))
+    found += [(i, ns, Event(ns / NS_PER_S, "reversal", what=what)) for i, ns, what in reversals
+              if 0 <= i < len(cmds)]
+    found.sort(key=lambda e: e[0])
+    total = 0
+    for i, given_ns, ev in found:
+        want = given_ns if given_ns >= 0 else to_ns(ev.seconds)
+        ns = max(min(want, MAX_NS - total), 0)  # the events' sum stays within MAX_S too
+        total += ns
+        yield i, ns, ev, ns < want or (given_ns < 0 and not 0.0 <= ev.seconds <= MAX_S)
+
+
+def event_pauses(cmds: Sequence[Command], cmd_index: object, machine: MachineModel) -> list[tuple[int, int]]:
+    """``(command index, ns)`` of the events with time that a column of a trajectory with
+    ``cmd_index`` counts (reversal pauses aside): where the pulse time line must pause."""
+    import numpy as np
+
+    covered = np.zeros(len(cmds), dtype=bool)
+    ci = np.asarray(cmd_index, dtype=np.int64)
+    covered[ci[(ci >= 0) & (ci < len(cmds))]] = True
+    event_cmds = [i for i, c in enumerate(cmds) if isinstance(c, EVENT_TYPES)]
+    return [(i, ns) for i, ns, _ev, _cut in timed_events(cmds, event_cmds, covered, machine) if ns > 0]
 
 
 def _dominant(ns: object, names: tuple[str, ...]) -> list[str]:

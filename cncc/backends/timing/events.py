@@ -14,6 +14,10 @@ The rules (``docs/timing.md`` lists them with the reasons):
   operator-dependent.
 * SZGH ``WAT`` waits and pausing messages: the time on the command (0 when the
   machine gives none), flagged operator-dependent.
+
+Reversal pauses (SZGH Axis P68) are no command's event: they depend on the motion, so
+the driver finds them with the pulse backend and hands them over in
+:attr:`~cncc.backends.timing.model.Run.reversals` (category ``reversal``).
 """
 
 from __future__ import annotations
@@ -23,7 +27,7 @@ from dataclasses import dataclass
 from cncc.ir import Command, Dwell, Message, Spindle, SpindleSpeed, SpindleState, Stop, StopKind, ToolChange, Wait
 from cncc.ir.machine import MachineModel
 
-CATEGORIES: tuple[str, ...] = ("rapid", "feed", "arc", "dwell", "tool_change", "spindle", "wait")
+CATEGORIES: tuple[str, ...] = ("rapid", "feed", "arc", "dwell", "tool_change", "spindle", "wait", "reversal")
 """Every category of time, in report order (motions first, then events)."""
 
 EVENT_TYPES = (Dwell, ToolChange, Spindle, SpindleSpeed, Stop, Wait, Message)

@@ -62,6 +62,9 @@ class Run:
     trajectory: Trajectory
     planner: str = ""  # how it was produced, e.g. "nominal (length / feed)"
     nominal: bool = False
+    reversals: tuple[tuple[int, int, str], ...] = ()
+    """(command index, ns, what) of the reversal pauses (SZGH Axis P68) in this trajectory on this
+    machine: the pulse backend's (``ReversalPauses.by_command``), passed in by the driver."""
 
 
 @dataclass(slots=True)

@@ -16,7 +16,7 @@ LIMIT_COLORS = {
 }
 CATEGORY_COLORS = {
     "rapid": "#9e9e9e", "feed": "#1f77b4", "arc": "#6baed6", "dwell": "#f0c419", "tool_change": "#00a6a6",
-    "spindle": "#9edae5", "wait": "#7b4173",
+    "spindle": "#9edae5", "wait": "#7b4173", "reversal": "#637939",
 }
 """Event colours differ from every limit colour: both share the legend of the speed plot."""
 SPEED_COLORS = ("#440154", "#46327e", "#365c8d", "#277f8e", "#1fa187", "#4ac16d", "#a0da39", "#fde725")
