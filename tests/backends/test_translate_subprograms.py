@@ -10,10 +10,12 @@ runs of L2) are kept; O3000 (a G65 macro whose body depends on its argument) is 
 from __future__ import annotations
 
 import re
+from pathlib import Path
 
 import pytest
 
 from cncc.api import compile_text
+from cncc.cli import main
 from tests.backends.test_translate_roundtrip import DATA, TABLES, TARGETS, check
 
 TEXT = (DATA / "corpus" / "syntec" / "subprograms.nc").read_text()
@@ -106,3 +108,16 @@ def test_program_numbers_outside_the_target_range_are_renumbered() -> None:
 def test_without_the_option_the_output_is_flattened() -> None:
     out = check(TEXT, "syntec", "fanuc")
     assert calls(out) == [] and "O1000" not in out
+
+
+def test_target_option_on_the_command_line(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    src = tmp_path / "nested.nc"
+    src.write_text(NESTED)
+    argv = ["-x", "syntec", "-t", "linuxcnc", "--emit=gcode", "--keep-subprograms", str(src)]
+    assert main([*argv, "--target-option", "max_call_depth=1"]) == 0
+    one = capsys.readouterr()
+    assert "W0814" in one.err and one.out.count(" sub\n") == 1
+    assert main(argv) == 0
+    assert capsys.readouterr().out.count(" sub\n") == 3
+    assert main([*argv, "--target-option", "no_such_option=1"]) != 0
+    assert "E0904" in capsys.readouterr().err
