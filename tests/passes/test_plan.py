@@ -242,10 +242,43 @@ def test_narrow_filter_where_speeds_change_little() -> None:
 
     cmds = polyline([(20 + 0.3 * i, 30 + 0.05 * (i % 3)) for i in range(30)], 9000)
     t_best = plan(cmds, level=2).duration_total_s
-    shares = fir.TF_SHARES
+    shares, steps = fir.TF_SHARES, fir.REFINE_STEPS
     try:
-        fir.TF_SHARES = (1.0,)
+        fir.TF_SHARES, fir.REFINE_STEPS = (1.0,), ()
         t_wide = plan(cmds, level=2).duration_total_s
     finally:
-        fir.TF_SHARES = shares
+        fir.TF_SHARES, fir.REFINE_STEPS = shares, steps
     assert t_best < 0.95 * t_wide
+
+
+def _bang_bang(v_start: float, steps: list[tuple[float, float]]) -> object:
+    """Phases from ``v_start`` through ``(acceleration, end speed or cruise time)`` steps."""
+    from cncc.passes.planning.profile import Phases
+
+    t, s, v = 0.0, 0.0, v_start
+    rows = []
+    for acc, target in steps:
+        dur = target if acc == 0 else (target - v) / acc
+        rows.append((t, dur, s, v, acc))
+        s += v * dur + acc * dur**2 / 2
+        v += acc * dur
+        t += dur
+    t0, d, s0, v0, a0 = (np.array(c, float) for c in zip(*rows, strict=True))
+    return Phases(t0, d, s0, v0, a0, np.zeros_like(d), np.zeros(d.size, np.int8))
+
+
+def test_short_peak_cut_at_higher_minimum_between_the_minima() -> None:
+    # minima at 10 and 11 mm/s, a peak of 12 mm/s between them far shorter than Tf: the
+    # cut is flat at 11 from minimum to minimum, so neither neighbouring peak is touched
+    from cncc.passes.planning.fir import peak_cuts
+
+    a, tf = 1000.0, 0.01
+    ph = _bang_bang(0.0, [(a, 40.0), (-a, 10.0), (0, 0.05), (a, 12.0), (-a, 11.0), (0, 0.05), (a, 40.0),
+                          (0, 0.2), (-a, 0.0)])
+    cuts = peak_cuts(ph, tf)  # type: ignore[arg-type]
+    s_end = ph.s0 + ph.v0 * ph.dur + ph.a0 * ph.dur**2 / 2  # type: ignore[attr-defined]
+    row = cuts[np.argmin(np.abs(cuts[:, 2] - 11.0))]
+    assert row[2] == pytest.approx(11.0)
+    assert row[0] == pytest.approx(s_end[1])  # end of the braking to 10 mm/s
+    assert row[1] == pytest.approx(ph.s0[6])  # type: ignore[attr-defined]  # start of the ramp to 40 mm/s
+    assert (cuts[:, 2] >= 10.0).all()  # nothing is cut below a neighbouring minimum

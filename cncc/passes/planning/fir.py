@@ -47,6 +47,7 @@ class _Grid:
 
 TF_SHARES = (1.0, 0.5, 0.25, 0.125)
 FORCED_SHARE = 0.02
+REFINE_STEPS = (2**0.5, 2**0.25, 2**0.125)
 
 
 def fir_profile(seg: Segments) -> Phases:
@@ -67,10 +68,22 @@ def unfiltered_profile(seg: Segments) -> tuple[Phases, float]:
     forced = float(ph.dur[(ph.a0 == 0.0) & (ph.dur < 2 * tf)].sum()) + tf
     if forced < FORCED_SHARE * (ph.end_time + tf):
         return best
+    share_best = 1.0
     for share in TF_SHARES[1:]:
         ph, tf = unfiltered_at(seg, tf_max * share)
         if ph.end_time + tf < best[0].end_time + best[1]:
-            best = (ph, tf)
+            best, share_best = (ph, tf), share
+    # refine around the best width: the time is a smooth function of log(tf) near its
+    # minimum, so two halvings of the step find most of what a finer grid would
+    centre = share_best
+    for step in REFINE_STEPS:
+        for share in (centre * step, centre / step):
+            if share > 1.0:
+                continue
+            ph, tf = unfiltered_at(seg, tf_max * share)
+            if ph.end_time + tf < best[0].end_time + best[1]:
+                best, share_best = (ph, tf), share
+        centre = share_best
     return best
 
 
@@ -214,7 +227,7 @@ def peak_cuts(ph: Phases, tf: float) -> FloatArray:
     v_end = ph.v0 + ph.a0 * ph.dur
     tables = _min_tables(np.minimum(ph.v0, v_end))
     s_end = ph.s0 + ph.v0 * ph.dur + ph.a0 * ph.dur**2 / 2
-    m_l, m_r = _neighbour_minima(ph, v_end, s_end, first, second)
+    m_l, m_r, x_l, x_r = _neighbour_minima(ph, v_end, s_end, first, second)
     v_pk = v_end[first]
 
     def own(level: FloatArray) -> np.ndarray:
@@ -222,9 +235,16 @@ def peak_cuts(ph: Phases, tf: float) -> FloatArray:
         return np.asarray(s_b - s_a >= level * tf)
 
     # strictly above the neighbouring minima, or the part would run into the next peak
-    top = np.minimum(np.maximum(m_l, m_r) * (1 + 1e-7) + 1e-12, v_pk)
-    level = np.where(own(top), _bisect(own, top, v_pk), _bisect(own, np.zeros_like(v_pk), v_pk))
+    m_hi = np.maximum(m_l, m_r)
+    top = np.minimum(m_hi * (1 + 1e-7) + 1e-12, v_pk)
+    fits = own(top)
+    level = np.where(fits, _bisect(own, top, v_pk), m_hi)
     s_a, s_b = _component(ph, tables, first, second, level)
+    # a peak too short for its own cruise is cut at the higher neighbouring minimum,
+    # from minimum to minimum: the speed then cruises through the higher minimum's
+    # plateau and the acceleration does not flip (the neighbouring peaks stay intact)
+    s_a = np.where(fits, s_a, x_l)
+    s_b = np.where(fits, s_b, x_r)
     return np.stack([s_a, s_b, level], axis=1)
 
 
@@ -241,18 +261,20 @@ def _bisect(ok: Callable[[FloatArray], np.ndarray], lo: FloatArray, hi: FloatArr
 
 
 def _neighbour_minima(ph: Phases, v_end: FloatArray, s_end: FloatArray, first: np.ndarray, second: np.ndarray
-                      ) -> tuple[FloatArray, FloatArray]:
-    """Speed of the minimum before each peak (end of the last braking phase) and after it
-    (start of the next accelerating phase); rest at the part's ends."""
+                      ) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
+    """Speed and position of the minimum before each peak (end of the last braking phase)
+    and after it (start of the next accelerating phase); rest at the part's ends."""
     dec = np.flatnonzero(ph.a0 < 0)
     acc = np.flatnonzero(ph.a0 > 0)
     i = np.searchsorted(dec, first) - 1
     q = dec[np.maximum(i, 0)] if dec.size else np.zeros_like(first)
     m_l = np.where(i >= 0, v_end[q], 0.0)
+    x_l = np.where(i >= 0, s_end[q], 0.0)
     i = np.searchsorted(acc, second, side="right")
     r = acc[np.minimum(i, acc.size - 1)] if acc.size else np.zeros_like(second)
     m_r = np.where(i < acc.size, ph.v0[r], 0.0)
-    return m_l, m_r
+    x_r = np.where(i < acc.size, ph.s0[r], s_end[-1])
+    return m_l, m_r, x_l, x_r
 
 
 def _min_tables(values: FloatArray) -> list[FloatArray]:
