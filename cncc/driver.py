@@ -308,12 +308,12 @@ def frame_passes(dialect: Dialect, machine_coords: bool) -> list[Any]:
     if machine_coords:
         out += [ToMachine(), ToolLength()]
     out.append(CutterComp(outer_corner=str(dialect.option("comp_outer_corner", "intersection")),
+                          outer_arc_below_deg=float(dialect.option("comp_outer_arc_below_deg", 0.0)),
                           lookahead=int(dialect.option("comp_lookahead", 2)),
                           startup=str(dialect.option("comp_startup", "type_a"))))
     return out
 
 
-                          outer_arc_below_deg=float(dialect.option("comp_outer_arc_below_deg", 0.0)),
 def guessed_dialect(src: SourceFile, opts: Options, sink: DiagnosticSink) -> Dialect | None:
     from cncc.frontend.detect import guess_dialect
 
