@@ -239,7 +239,7 @@ def check_levels(it: Interpreter, ctx: BlockContext, d: CycleData, warn: bool = 
 
 # ---- the IR command --------------------------------------------------------------------------
 def emit_cycle(it: Interpreter, ctx: BlockContext, d: CycleData, holes: tuple[Vec6, ...], repeat: int,
-               pattern: str) -> None:
+               pattern: str, pattern_words: tuple[tuple[str, float], ...] = ()) -> None:
     """Append the :class:`Cycle` for ``holes`` and move the tool to the last hole."""
     assert d.r_mm is not None and d.bottom_mm is not None
     feed = ops.feed_mm_min(it, ctx)
@@ -272,7 +272,7 @@ def emit_cycle(it: Interpreter, ctx: BlockContext, d: CycleData, holes: tuple[Ve
         return_initial=it.modal.cycle_return_initial, peck_mm=peck, clearance_mm=_clearance(it, d.kind),
         peck_tap_to_r=option(it, "cycle_peck_tap", "return_r") == "return_r", shift_mm=shift,
         dwell_s=d.dwell_s, spindle=spindle, spindle_rpm=rpm, tap_pitch_mm=pitch, repeat=repeat,
-        pattern=pattern, motion=ops.block_motion(it, ctx), **_lift_pause(it, d.kind)))
+        pattern=pattern, pattern_words=pattern_words, motion=ops.block_motion(it, ctx), **_lift_pause(it, d.kind)))
     it.pos = placed[-1]
 
 

@@ -27,7 +27,7 @@ from typing import TYPE_CHECKING
 from cncc import diagnostics as dg
 from cncc.dialects import CodeDef
 from cncc.frontend import cycles, ops
-from cncc.ir import Vec6
+from cncc.ir import AXES, Vec6
 
 if TYPE_CHECKING:
     from cncc.frontend.interp import BlockContext, Interpreter
@@ -146,4 +146,6 @@ def _pattern(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
         p = list(at)
         p[first], p[second], p[plane.normal] = u, v, it.pos[plane.normal]
         holes.append((p[0], p[1], p[2], p[3], p[4], p[5]))
-    cycles.emit_cycle(it, ctx, data, tuple(holes), 1, c.name)
+    words = [(AXES[first], at[first]), (AXES[second], at[second])]
+    words += [(k, it.reader.value(ctx.words[k], c.words.get(k))) for k in "IJKP" if k in ctx.words]
+    cycles.emit_cycle(it, ctx, data, tuple(holes), 1, c.name, tuple(words))

@@ -276,6 +276,7 @@ class Cycle:
     tap_pitch_mm: float = 0.0  # tapping: feed = rpm x pitch, spindle-synchronised
     repeat: int = 1  # K (SYNTEC) / L (SZGH) as programmed
     pattern: str = ""  # the hole-pattern code (G134 ...) that produced the holes
+    pattern_words: tuple[tuple[str, float], ...] = ()  # its words as read (mm, deg, counts; origin by axis letter)
     motion: Motion = DEFAULT_MOTION
     lift_pause_s: float = 0.0  # G73/G83: dwell before each peck lift (SZGH User P8)
     lift_at_feed: bool = False  # G73/G83: peck lifts at feed instead of rapid (User P8 < 0)

@@ -27,6 +27,7 @@ from dataclasses import dataclass
 
 from cncc import diagnostics as dg
 from cncc.backends.gcode import cycles as cy
+from cncc.backends.gcode import patterns as pt
 from cncc.backends.gcode.arcs import ArcForm, helix_feed_ratio, split
 from cncc.backends.gcode.frames import TargetFrame, add, sub
 from cncc.backends.gcode.numbers import counts_text, fixed, quantize
@@ -499,7 +500,17 @@ class GcodeEmitter:
         data = [cdef.name, f"{AXES[n]}{self.length(c.bottom_mm + fold[n])}", f"R{self.length(c.r_mm + fold[n])}",
                 *self._cycle_extra(c, cdef.words)]
         same = self.cycle_initial is not None and data == self.cycle_data
-        for k, hole in enumerate(c.holes):
+        pattern = pt.pattern_block(c, t, self.units.mm_per_unit, self.decimals, fold) if c.pattern else None
+        if c.pattern and pattern is None:
+            self.warn(dg.XL_PATTERN, f"the {c.pattern} pattern is written as its {len(c.holes)} holes")
+        if pattern is not None:  # the cycle data (K0: no hole), then the pattern block
+            if not same or ret != self.cycle_return:
+                rep = str(t.option("cycle_repeat_word", "K"))
+                self.inc_poison = True
+                yield self.block([ret, *data, self._feed_word(c.feed_mm_min), f"{rep}0"])
+            self.inc_poison = True
+            yield self.block(pattern)
+        for k, hole in enumerate(() if pattern is not None else c.holes):
             self.inc_poison = True
             q = self._at(hole)
             words = [f"{AXES[a]}{self.text(q[a], a)}" for a in range(6)

@@ -66,11 +66,7 @@ def prepare(cmds: Iterable[Command], target: Target, expand: Expand, sink: Diagn
 
 def _cycle(c: Cycle, target: Target, expand: Expand, sink: DiagnosticSink, seen: set[str]) -> Iterable[Command]:
     problem = keep_problem(c, target)
-    if c.pattern and not problem and dg.XL_PATTERN not in seen:
-        seen.add(dg.XL_PATTERN)
-        note(sink, dg.XL_PATTERN, c.span, f"{target.name} output: the {c.pattern} pattern is written as its "
-                                          f"{len(c.holes)} holes")
-    if not problem:
+    if not problem:  # a kept pattern the target cannot write as one gets N0807 from the emitter
         return (c,)
     key = f"{dg.XL_CYCLE_EXPANDED}:{c.kind.value}"
     if key not in seen:
