@@ -18,10 +18,10 @@ import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 SCRIPTS = [
-    ("frontend.py", ["--lines", "1000000"], ["--lines", "50000", "--repeat", "1"]),
-    ("macros.py", [], ["--quick"]),
+    ("frontend.py", ["--lines", "1000000"], ["--lines", "50000", "--repeat", "2"]),
+    ("macros.py", [], ["--rows", "100", "--cols", "100", "--plain-lines", "50000"]),
     ("planner.py", [], ["--quick"]),
-    ("pulses.py", [], ["--steps", "2000000"]),
+    ("pulses.py", ["--steps", "100000000"], ["--steps", "2000000", "--repeat", "1"]),
     ("lsp.py", [], ["--lines", "2000", "--edits", "3"]),
 ]
 
