@@ -4,7 +4,8 @@ Consumes commands whose frames may carry a :class:`~cncc.ir.frame.Rotation` reco
 produces them turned by the record's angle (counter-clockwise positive) about its
 centre in the record's plane, with the record removed.  Arc directions and the
 compensation side are unchanged.  In G91 the increment is turned about the actual
-start point (see :mod:`cncc.passes.affine`).
+start point (see :mod:`cncc.passes.affine`).  Records in ``keep`` are left in the
+frames untouched (a G-code target with G68 runs them itself).
 """
 
 from __future__ import annotations
@@ -14,6 +15,7 @@ from dataclasses import dataclass, replace
 from typing import ClassVar
 
 from cncc.ir import Frame
+from cncc.ir.frame import Rotation
 from cncc.passes import register
 from cncc.passes.affine import Affine, AffinePass
 
@@ -24,10 +26,11 @@ class RotationPass(AffinePass):
     """Rotation in the plane of the G68 block."""
 
     name: ClassVar[str] = "rotation"
+    keep: frozenset[Rotation] = frozenset()  # records left in the frames (a G-code target runs them)
 
     def affine(self, frame: Frame) -> Affine | None:
         r = frame.rotation
-        if r is None:
+        if r is None or r in self.keep:
             return None
         i, j = r.plane.first, r.plane.second
         a = math.radians(r.angle_deg)
@@ -40,4 +43,4 @@ class RotationPass(AffinePass):
         return Affine((c[0], c[1], c[2]), rows)
 
     def strip(self, frame: Frame, affine: Affine | None) -> Frame:
-        return frame if frame.rotation is None else replace(frame, rotation=None)
+        return frame if frame.rotation is None or frame.rotation in self.keep else replace(frame, rotation=None)

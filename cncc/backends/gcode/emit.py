@@ -14,7 +14,10 @@ program lines for the target, looked up by canonical op in its tables
   offsets computed from the written numbers so that they re-parse exactly;
 * offsets the target cannot set are folded into the coordinates
   (:mod:`cncc.backends.gcode.frames`); canned cycles kept whole are written with the
-  target's cycle codes (:mod:`cncc.backends.gcode.cycles`).
+  target's cycle codes (:mod:`cncc.backends.gcode.cycles`);
+* a rotation record left in the frames (the target runs it,
+  :mod:`cncc.backends.gcode.keep_transforms`) is written as G68 X Y R when a
+  command's frame gains it and G69 when it loses it; positions stay untransformed.
 
 The output re-parses in the target dialect to the same motion
 (``tests/backends/test_translate_roundtrip.py``).
@@ -61,6 +64,7 @@ from cncc.ir import (
     Vec6,
     Wait,
 )
+from cncc.ir.frame import Rotation
 from cncc.source import NO_SPAN, Span
 
 AXES = "XYZABC"
@@ -73,6 +77,7 @@ _COOLANT_OPS = {CoolantState.FLOOD: "coolant_flood", CoolantState.MIST: "coolant
 _STOP_OPS = {StopKind.PROGRAM_STOP: "program_stop", StopKind.OPTIONAL_STOP: "optional_stop",
              StopKind.PROGRAM_END: "program_end", StopKind.END_REWIND: "program_end_rewind"}
 ANGLE_DECIMALS = 4
+ROTATION_DECIMALS = 6  # G68 R: 1e-6 degrees is 0.02 um at 1 m
 
 
 @dataclass(frozen=True, slots=True)
@@ -117,6 +122,7 @@ class GcodeEmitter:
         self.sync_poison = False  # blocks setting units and offsets have none either
         self.in_alt = False
         self.all_axes = False  # the next move writes X, Y and Z (the first move of a call)
+        self.rotation: Rotation | None = None  # the G68 record the output has in force
 
     # ---- numbers --------------------------------------------------------------------------
     @property
@@ -316,7 +322,26 @@ class GcodeEmitter:
         if any(abs(v) > 1e-12 for v in fold):
             self.warn(dg.XL_FOLDED, f"{self.t.name} output: an offset the target cannot set is added to the "
                                     "coordinates")
+        if f.rotation != self.rotation and self.t.has("rotate_on"):
+            if self.cycle_initial is not None and not lines:
+                lines.append(self.block([self.t.code("cycle_off")]))
+                self.cycle_initial = None
+            self.sync_poison = True
+            lines.append(self._rotation_block(f.rotation))
+            self.sync_poison = False
         yield from lines
+
+    def _rotation_block(self, r: Rotation | None) -> str:
+        """G68 with the kept record (centre in the target's program coordinates, angle in degrees), or G69."""
+        self.rotation = r
+        self.qpos = None  # positions are read again from the commands under the new rotation
+        if r is None:
+            return self.block([self.t.code("rotate_off")])
+        fold = self.fold or (0.0,) * 6
+        i, j = r.plane.first, r.plane.second
+        centre = [f"{AXES[k]}{self.text(self.counts(c + fold[k], k), k)}"
+                  for k, c in zip((i, j), r.center_mm, strict=True)]
+        return self.block([self.t.code("rotate_on"), *centre, f"R{fixed(r.angle_deg, ROTATION_DECIMALS)}"])
 
     def _offsets(self, f: Frame, start: Vec6) -> list[str]:
         tf, out = self.tf, []

@@ -1,0 +1,21 @@
+(G68 rotation with an absolute angle: lines and arcs, a new rotation in force, G69)
+G90 G17 G71 G94 G54
+G00 X0. Y0. Z10.
+G01 Z-1. F300.
+G68 X10. Y5. R30.
+G01 X20. Y0. F200.
+G03 X0. Y20. I-20. J0.
+G02 X-10. Y10. R10.
+G01 Y0.
+G68 X0. Y0. R-120.
+G01 X15. Y0.
+G03 X15. Y0. I-15. J0.
+G00 Z5.
+G69
+G00 X50. Y50.
+G68 X50. Y50. R90.
+G01 X60. Y50. F150.
+G02 X50. Y40. I-10. J0.
+G69
+G00 Z10.
+M30
