@@ -255,11 +255,11 @@ def path_passes(cmds: Iterable[Command], dialect: Dialect, machine: MachineModel
     tol_abs = float(dialect.option("arc_radius_tolerance_mm", ArcCheck.abs_tol_mm))
     tol_rel = float(dialect.option("arc_radius_tolerance_rel", ArcCheck.rel_tol))
     keep: frozenset[str] = frozenset()
-    rotations: frozenset[Any] = frozenset()
+    transforms: frozenset[Any] = frozenset()
     if opts.emit == "gcode" and not opts.expand:  # translation: keep the cycles the target runs alike
-        cmds, keep, rotations = translation_prepare(cmds, dialect, opts, sink)
+        cmds, keep, transforms = translation_prepare(cmds, dialect, opts, sink)
     passes = [ExpandCycles(keep=keep), *frame_passes(dialect, machine_coords=opts.emit in MACHINE_EMITS,
-                                                     keep_rotations=rotations),
+                                                     keep_transforms=transforms),
               ArcCheck(abs_tol_mm=max(tol_abs, ArcCheck.abs_tol_mm), rel_tol=tol_rel, repair=opts.repair_arcs)]
     return run_pipeline(passes, cmds, ctx)
 
@@ -280,9 +280,9 @@ def output_dialect(dialect: Dialect, opts: Options, sink: DiagnosticSink) -> Dia
 def translation_prepare(cmds: Iterable[Command], dialect: Dialect, opts: Options,
                         sink: DiagnosticSink) -> tuple[Iterable[Command], frozenset[str], frozenset[Any]]:
     """Cycles the target cannot keep expanded now (before the transforms), notes for what cncc applies;
-    the kept cycle kinds and the rotation records the target runs itself."""
+    the kept cycle kinds and the rotation and mirror records the target runs itself."""
     from cncc.backends.gcode import make_target
-    from cncc.backends.gcode.keep_transforms import kept_rotations
+    from cncc.backends.gcode.keep_transforms import kept_transforms
     from cncc.backends.gcode.translate import kept_cycle_kinds, prepare
     from cncc.passes.expand_cycles import expand
 
@@ -290,7 +290,7 @@ def translation_prepare(cmds: Iterable[Command], dialect: Dialect, opts: Options
     if target is None:
         return cmds, frozenset(), frozenset()
     tgt = make_target(target)
-    cmds = list(cmds)  # the keep decision looks at a whole rotation before its first move
+    cmds = list(cmds)  # the keep decision looks at a whole transform before its first move
 
     def step_mm(units: Units) -> float:
         unit = Units.INCH if opts.units == "inch" else Units.MM if opts.units == "mm" else units
@@ -298,17 +298,17 @@ def translation_prepare(cmds: Iterable[Command], dialect: Dialect, opts: Options
         chosen = opts.decimals_inch if unit is Units.INCH else opts.decimals_mm
         return 10.0 ** -(default if chosen is None else chosen) * unit.mm_per_unit
 
-    rotations = kept_rotations(cmds, tgt, step_mm)
-    return prepare(cmds, tgt, expand, sink, rotations), kept_cycle_kinds(tgt), rotations
+    kept = kept_transforms(cmds, tgt, step_mm)
+    return prepare(cmds, tgt, expand, sink, kept), kept_cycle_kinds(tgt), kept
 
 
-def frame_passes(dialect: Dialect, machine_coords: bool, keep_rotations: frozenset[Any] = frozenset()) -> list[Any]:
+def frame_passes(dialect: Dialect, machine_coords: bool, keep_transforms: frozenset[Any] = frozenset()) -> list[Any]:
     """Polar, scaling, mirror, rotation (program coordinates); then, for the planner's backends,
     offsets and tool length (machine coordinates); then cutter compensation.
 
     The canon trace and G-code keep program coordinates: they report offsets and tool length
-    themselves, so ``machine_coords`` is False for them.  ``keep_rotations``: G68 records a
-    G-code target runs itself (left in the frames).
+    themselves, so ``machine_coords`` is False for them.  ``keep_transforms``: G68 and G51.1
+    records a G-code target runs itself (left in the frames).
     """
     from cncc.passes.cutter_comp import CutterComp
     from cncc.passes.mirror import MirrorPass
@@ -318,7 +318,8 @@ def frame_passes(dialect: Dialect, machine_coords: bool, keep_rotations: frozens
     from cncc.passes.to_machine import ToMachine
     from cncc.passes.tool_length import ToolLength
 
-    out: list[Any] = [PolarPass(), ScalingPass(), MirrorPass(), RotationPass(keep=keep_rotations)]
+    out: list[Any] = [PolarPass(), ScalingPass(), MirrorPass(keep=keep_transforms),
+                      RotationPass(keep=keep_transforms)]
     if machine_coords:
         out += [ToMachine(), ToolLength()]
     out.append(CutterComp(outer_corner=str(dialect.option("comp_outer_corner", "intersection")),

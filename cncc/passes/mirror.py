@@ -6,7 +6,8 @@ axis), with the record removed.  With one axis of the plane mirrored, arcs rever
 (G02 <-> G03), the cutter-compensation side swaps (G41 <-> G42) and a rotation in
 force turns the other way about the mirrored centre: the mirror acts on the rotated
 part as a whole, which is what "the rotation direction reverses" means.  Mirroring
-both plane axes is a half turn and reverses nothing.
+both plane axes is a half turn and reverses nothing.  Records in ``keep`` are left in
+the frames untouched (a G-code target with G51.1 runs them itself).
 """
 
 from __future__ import annotations
@@ -26,16 +27,17 @@ class MirrorPass(AffinePass):
     """Programmable mirror about axis-parallel lines."""
 
     name: ClassVar[str] = "mirror"
+    keep: frozenset[object] = frozenset()  # records left in the frames (a G-code target runs them)
 
     def affine(self, frame: Frame) -> Affine | None:
         m = frame.mirror
-        if m is None or not any(m.axes):
+        if m is None or not any(m.axes) or m in self.keep:
             return None
         sx, sy, sz = (-1.0 if flag else 1.0 for flag in m.axes)
         return Affine(m.center_mm, ((sx, 0.0, 0.0), (0.0, sy, 0.0), (0.0, 0.0, sz)))
 
     def strip(self, frame: Frame, affine: Affine | None) -> Frame:
-        if frame.mirror is None:
+        if frame.mirror is None or frame.mirror in self.keep:
             return frame
         if affine is None:
             return replace(frame, mirror=None)

@@ -15,7 +15,6 @@ from dataclasses import dataclass, replace
 from typing import ClassVar
 
 from cncc.ir import Frame
-from cncc.ir.frame import Rotation
 from cncc.passes import register
 from cncc.passes.affine import Affine, AffinePass
 
@@ -26,7 +25,7 @@ class RotationPass(AffinePass):
     """Rotation in the plane of the G68 block."""
 
     name: ClassVar[str] = "rotation"
-    keep: frozenset[Rotation] = frozenset()  # records left in the frames (a G-code target runs them)
+    keep: frozenset[object] = frozenset()  # records left in the frames (a G-code target runs them)
 
     def affine(self, frame: Frame) -> Affine | None:
         r = frame.rotation

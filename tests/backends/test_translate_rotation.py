@@ -1,8 +1,9 @@
-"""G68 rotation kept as G68/G69 by targets that have it (cncc.backends.gcode.keep_transforms).
+"""G68 rotation and G51.1 mirror kept as codes by targets that have them
+(cncc.backends.gcode.keep_transforms).
 
-The round trip (test_translate_roundtrip.py, corpus rotation*.nc) checks that the kept
-rotation moves the machine as the source does; these tests check that it is kept
-(G68 in the output, coordinates untransformed) and where it is not.
+The round trip (test_translate_roundtrip.py, corpus rotation*.nc and mirror.nc) checks
+that the kept transform moves the machine as the source does; these tests check that
+it is kept (the codes in the output, coordinates untransformed) and where it is not.
 """
 
 from __future__ import annotations
@@ -76,4 +77,33 @@ def test_increment_after_a_kept_rotation_makes_cncc_apply_it() -> None:
             "G69\nG68 X5. Y5. R45.\nG91 G01 X10. Y0.\nG90 G69\nM30\n")
     out, _ = translate(text, "fanuc")
     assert "G68" not in out
+    check(text, "syntec", "fanuc")
+
+
+MIRROR = (DATA / "corpus" / "syntec" / "mirror.nc").read_text()
+
+
+@pytest.mark.parametrize(("target", "on", "off"), [("fanuc", "G51.1", "G50.1"), ("syntec", "G51.1", "G50.1"),
+                                                   ("szgh", "G11", "G12")])
+def test_mirror_is_kept_with_programmed_arcs(target: str, on: str, off: str) -> None:
+    out, codes = translate(MIRROR, target)
+    assert f"{on} X10.\n" in out.replace(";", "") and f"{on} X10. Y20." in out and f"{on} Y30." in out
+    assert out.count(off) == 3
+    # the arcs as programmed: the control reverses them, not the output
+    assert "G03 X30. Y15. I0. J10." in out and "G02 X70. Y50. I10. J0." in out
+    assert "N0803" not in codes
+
+
+@pytest.mark.parametrize("target", ["linuxcnc", "grbl"])
+def test_targets_without_mirror_codes_get_mirrored_coordinates(target: str) -> None:
+    out, codes = translate(MIRROR, target)
+    assert "G51.1" not in out and "N0803" in codes
+    assert "G02 X-10. Y15." in out  # X30 about X10 is X-10, and the G03 turns into G02
+
+
+def test_mirror_with_a_rotation_inside_is_applied_by_cncc() -> None:
+    text = ("G90 G17 G71 G94 G54\nG00 X0. Y0. Z10.\nG51.1 X10.\nG68 X0. Y0. R30.\nG01 X20. Y5. F200.\n"
+            "G69\nG50.1 X0.\nG00 X0. Y0.\nM30\n")
+    out, codes = translate(text, "fanuc")
+    assert "G51.1" not in out and "G68" not in out and {"N0801", "N0803"} <= set(codes)
     check(text, "syntec", "fanuc")

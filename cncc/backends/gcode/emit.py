@@ -15,9 +15,10 @@ program lines for the target, looked up by canonical op in its tables
 * offsets the target cannot set are folded into the coordinates
   (:mod:`cncc.backends.gcode.frames`); canned cycles kept whole are written with the
   target's cycle codes (:mod:`cncc.backends.gcode.cycles`);
-* a rotation record left in the frames (the target runs it,
-  :mod:`cncc.backends.gcode.keep_transforms`) is written as G68 X Y R when a
-  command's frame gains it and G69 when it loses it; positions stay untransformed.
+* a rotation or mirror record left in the frames (the target runs it,
+  :mod:`cncc.backends.gcode.keep_transforms`) is written as G68 X Y R / G51.1 X Y
+  when a command's frame gains it and G69 / G50.1 when it loses it; positions stay
+  untransformed.
 
 The output re-parses in the target dialect to the same motion
 (``tests/backends/test_translate_roundtrip.py``).
@@ -64,7 +65,7 @@ from cncc.ir import (
     Vec6,
     Wait,
 )
-from cncc.ir.frame import Rotation
+from cncc.ir.frame import Mirror, Rotation
 from cncc.source import NO_SPAN, Span
 
 AXES = "XYZABC"
@@ -123,6 +124,7 @@ class GcodeEmitter:
         self.in_alt = False
         self.all_axes = False  # the next move writes X, Y and Z (the first move of a call)
         self.rotation: Rotation | None = None  # the G68 record the output has in force
+        self.mirror: Mirror | None = None  # the G51.1 record the output has in force
 
     # ---- numbers --------------------------------------------------------------------------
     @property
@@ -322,14 +324,34 @@ class GcodeEmitter:
         if any(abs(v) > 1e-12 for v in fold):
             self.warn(dg.XL_FOLDED, f"{self.t.name} output: an offset the target cannot set is added to the "
                                     "coordinates")
-        if f.rotation != self.rotation and self.t.has("rotate_on"):
-            if self.cycle_initial is not None and not lines:
-                lines.append(self.block([self.t.code("cycle_off")]))
-                self.cycle_initial = None
-            self.sync_poison = True
+        mirror = f.mirror != self.mirror and self.t.has("mirror_on")
+        rotation = f.rotation != self.rotation and self.t.has("rotate_on")
+        if (mirror or rotation) and self.cycle_initial is not None and not lines:
+            lines.append(self.block([self.t.code("cycle_off")]))
+            self.cycle_initial = None
+        self.sync_poison = True
+        if mirror:
+            lines += self._mirror_blocks(f.mirror)
+        if rotation:
             lines.append(self._rotation_block(f.rotation))
-            self.sync_poison = False
+        self.sync_poison = False
         yield from lines
+
+    def _mirror_blocks(self, m: Mirror | None) -> list[str]:
+        """G50.1 for the mirror in force, G51.1 with the kept record's axes at its centre."""
+        out, old = [], self.mirror
+        self.mirror = m
+        self.qpos = None
+        fold = self.fold or (0.0,) * 6
+        if old is not None:
+            out.append(self.block([self.t.code("mirror_off"),
+                                   *(f"{AXES[k]}{self.length(old.center_mm[k] + fold[k])}" for k in range(3)
+                                     if old.axes[k])]))
+        if m is not None:
+            out.append(self.block([self.t.code("mirror_on"),
+                                   *(f"{AXES[k]}{self.length(m.center_mm[k] + fold[k])}" for k in range(3)
+                                     if m.axes[k])]))
+        return out
 
     def _rotation_block(self, r: Rotation | None) -> str:
         """G68 with the kept record (centre in the target's program coordinates, angle in degrees), or G69."""

@@ -8,7 +8,7 @@ rotation and compensation records; cycles are whole); produces the same stream, 
   note N0806 naming the reason; hole patterns noted (N0807) — they are always
   written as their list of holes;
 * a note for every programmable transform cncc applies itself (N0801-N0805): the
-  output carries the transformed coordinates.  Rotations the target runs itself
+  output carries the transformed coordinates.  Rotations and mirrors the target runs itself
   (:mod:`cncc.backends.gcode.keep_transforms`) get no note.
 
 Under ``-Werror`` the notes are errors: the target does not do what the source asked
@@ -24,7 +24,6 @@ from cncc.backends.gcode.cycles import keep_problem
 from cncc.backends.gcode.target import Target
 from cncc.diagnostics import DiagnosticSink, Severity
 from cncc.ir import Command, CompSide, Cycle, CycleKind
-from cncc.ir.frame import Rotation
 
 Expand = Callable[[Cycle], Iterable[Command]]
 
@@ -48,16 +47,16 @@ def kept_cycle_kinds(target: Target) -> frozenset[str]:
 
 
 def prepare(cmds: Iterable[Command], target: Target, expand: Expand, sink: DiagnosticSink,
-            kept: frozenset[Rotation] = frozenset()) -> Iterator[Command]:
+            kept: frozenset[object] = frozenset()) -> Iterator[Command]:
     """Expand the cycles the target cannot keep and note the transforms cncc applies.
 
-    ``kept``: the rotation records the target runs itself (no N0801 for them).
+    ``kept``: the rotation and mirror records the target runs itself (no N0801/N0803).
     """
     seen: set[str] = set()
     for c in cmds:
         f = c.frame
         for attr, code, message in _TRANSFORMS:
-            if attr == "rotation" and f.rotation in kept:
+            if attr in ("rotation", "mirror") and getattr(f, attr) in kept:
                 continue
             if getattr(f, attr) is not None and code not in seen:
                 seen.add(code)

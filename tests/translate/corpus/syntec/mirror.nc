@@ -1,0 +1,22 @@
+(G51.1 mirror on one axis and on both, arcs reversed by the control, G50.1)
+G90 G17 G71 G94 G54
+G00 X0. Y0. Z10.
+G01 Z-1. F300.
+G51.1 X10.
+G01 X20. Y5. F200.
+G03 X30. Y15. I0. J10.
+G02 X40. Y5. R10.
+G50.1 X0.
+G00 Z5.
+G00 X0. Y0.
+G51.1 X10. Y20.
+G01 X15. Y5. F150.
+G03 X25. Y15. I0. J10.
+G50.1 X0. Y0.
+G00 X50. Y50.
+G51.1 Y30.
+G01 X60. Y40.
+G02 X70. Y50. I10. J0.
+G50.1 Y0.
+G00 Z10.
+M30
