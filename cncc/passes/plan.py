@@ -16,8 +16,9 @@ normally, ``blend``); ``Trajectory.cmd_index`` refers to positions in ``cmds``.
   stop, dog-leg rapids) on machines whose ``corner_rule`` is ``speed-step``.
 * ``2`` (default) jerk-limited, near time-optimal: corners rounded within the blend
   tolerance, TOPP (acceleration-limited optimum) on widened caps, then a moving-average
-  jerk filter on the path coordinate (``planning/fir.py``); single moves and dog-leg
-  rapids use ruckig's time-optimal 7-phase profile.
+  jerk filter on the path coordinate (``planning/fir.py``), each segment's piece then
+  re-timed by ruckig between the vertex states (``planning/windows.py``); single moves
+  and dog-leg rapids use ruckig's time-optimal 7-phase profile.
 * ``3`` like 2, then each run re-optimised with CasADi/IPOPT over windows
   (``planning/optimal.py``): for studies and for judging ``-O2``.
 
@@ -146,6 +147,7 @@ def _profile(seg: Segments, machine: MachineModel, limits: AxisLimits, level: in
     from cncc.passes.planning.onedim import ruckig_move
     from cncc.passes.planning.profile import Phases, boundary_speeds, trapezoids
     from cncc.passes.planning.segments import take_off_speed
+    from cncc.passes.planning.windows import replan_segments
 
     if level == 0:
         t = seg.length / seg.vcap
@@ -166,7 +168,7 @@ def _profile(seg: Segments, machine: MachineModel, limits: AxisLimits, level: in
         from cncc.source import NO_SPAN
 
         sink.emit(dg.PLAN_FALLBACK, NO_SPAN, "ruckig could not plan a move; the filtered profile is used")
-    return fir_profile(seg)
+    return replan_segments(seg, fir_profile(seg))
 
 
 @register

@@ -238,16 +238,17 @@ def test_absurd_feeds_give_diagnostics_not_exceptions(feed: float) -> None:
 def test_narrow_filter_where_speeds_change_little() -> None:
     # 0.3 mm zig-zag at 9000 mm/min: the speed moves between close corner caps, where a
     # narrow jerk filter (less acceleration, shorter forced cruises) is the faster one
-    from cncc.passes.planning import fir
+    from cncc.passes.planning import fir, windows
 
     cmds = polyline([(20 + 0.3 * i, 30 + 0.05 * (i % 3)) for i in range(30)], 9000)
-    t_best = plan(cmds, level=2).duration_total_s
-    shares, steps = fir.TF_SHARES, fir.REFINE_STEPS
+    shares, steps, most = fir.TF_SHARES, fir.REFINE_STEPS, windows.MAX_SEGMENTS
     try:
+        windows.MAX_SEGMENTS = 0  # the filter alone, without the ruckig re-planning
+        t_best = plan(cmds, level=2).duration_total_s
         fir.TF_SHARES, fir.REFINE_STEPS = (1.0,), ()
         t_wide = plan(cmds, level=2).duration_total_s
     finally:
-        fir.TF_SHARES, fir.REFINE_STEPS = shares, steps
+        fir.TF_SHARES, fir.REFINE_STEPS, windows.MAX_SEGMENTS = shares, steps, most
     assert t_best < 0.95 * t_wide
 
 
@@ -282,3 +283,23 @@ def test_short_peak_cut_at_higher_minimum_between_the_minima() -> None:
     assert row[0] == pytest.approx(s_end[1])  # end of the braking to 10 mm/s
     assert row[1] == pytest.approx(ph.s0[6])  # type: ignore[attr-defined]  # start of the ramp to 40 mm/s
     assert (cuts[:, 2] >= 10.0).all()  # nothing is cut below a neighbouring minimum
+
+
+def test_ruckig_replanning_never_slower_and_verified() -> None:
+    # the same zig-zag: each segment's piece re-timed by ruckig between the vertex states
+    from cncc.passes.planning import windows
+
+    cmds = polyline([(20 + 0.3 * i, 30 + 0.05 * (i % 3)) for i in range(30)], 9000)
+    machine = load_machine("generic-mill")
+    replanned = plan_commands(cmds, machine, 2)
+    most = windows.MAX_SEGMENTS
+    try:
+        windows.MAX_SEGMENTS = 0
+        filtered = plan_commands(cmds, machine, 2)
+    finally:
+        windows.MAX_SEGMENTS = most
+    assert replanned.duration_total_s < filtered.duration_total_s
+    sink = DiagnosticSink()
+    report = verify_trajectory(replanned, cmds, machine, sink, corner_rule=effective_corner_rule(machine, 2),
+                               check_dynamics=True, jerk_limited=True)
+    assert report.count == 0, [d.message for d in sink]
