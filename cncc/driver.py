@@ -280,7 +280,7 @@ def output_dialect(dialect: Dialect, opts: Options, sink: DiagnosticSink) -> Dia
 def translation_prepare(cmds: Iterable[Command], dialect: Dialect, opts: Options,
                         sink: DiagnosticSink) -> tuple[Iterable[Command], frozenset[str], frozenset[Any]]:
     """Cycles the target cannot keep expanded now (before the transforms), notes for what cncc applies;
-    the kept cycle kinds and the rotation and mirror records the target runs itself."""
+    the kept cycle kinds and the rotation, mirror and scaling records the target runs itself."""
     from cncc.backends.gcode import make_target
     from cncc.backends.gcode.keep_transforms import kept_transforms
     from cncc.backends.gcode.translate import kept_cycle_kinds, prepare
@@ -307,8 +307,8 @@ def frame_passes(dialect: Dialect, machine_coords: bool, keep_transforms: frozen
     offsets and tool length (machine coordinates); then cutter compensation.
 
     The canon trace and G-code keep program coordinates: they report offsets and tool length
-    themselves, so ``machine_coords`` is False for them.  ``keep_transforms``: G68 and G51.1
-    records a G-code target runs itself (left in the frames).
+    themselves, so ``machine_coords`` is False for them.  ``keep_transforms``: G68, G51.1 and
+    G51 records a G-code target runs itself (left in the frames).
     """
     from cncc.passes.cutter_comp import CutterComp
     from cncc.passes.mirror import MirrorPass
@@ -318,7 +318,7 @@ def frame_passes(dialect: Dialect, machine_coords: bool, keep_transforms: frozen
     from cncc.passes.to_machine import ToMachine
     from cncc.passes.tool_length import ToolLength
 
-    out: list[Any] = [PolarPass(), ScalingPass(), MirrorPass(keep=keep_transforms),
+    out: list[Any] = [PolarPass(), ScalingPass(keep=keep_transforms), MirrorPass(keep=keep_transforms),
                       RotationPass(keep=keep_transforms)]
     if machine_coords:
         out += [ToMachine(), ToolLength()]

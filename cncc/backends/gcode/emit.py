@@ -15,10 +15,10 @@ program lines for the target, looked up by canonical op in its tables
 * offsets the target cannot set are folded into the coordinates
   (:mod:`cncc.backends.gcode.frames`); canned cycles kept whole are written with the
   target's cycle codes (:mod:`cncc.backends.gcode.cycles`);
-* a rotation or mirror record left in the frames (the target runs it,
-  :mod:`cncc.backends.gcode.keep_transforms`) is written as G68 X Y R / G51.1 X Y
-  when a command's frame gains it and G69 / G50.1 when it loses it; positions stay
-  untransformed.
+* a rotation, mirror or scaling record left in the frames (the target runs it,
+  :mod:`cncc.backends.gcode.keep_transforms`) is written as G68 X Y R / G51.1 X Y /
+  G51 X Y Z P (I J K; SZGH G36 R) when a command's frame gains it and G69 / G50.1 /
+  G50 (G37) when it loses it; positions stay untransformed.
 
 The output re-parses in the target dialect to the same motion
 (``tests/backends/test_translate_roundtrip.py``).
@@ -34,6 +34,7 @@ from cncc.backends.gcode import cycles as cy
 from cncc.backends.gcode import patterns as pt
 from cncc.backends.gcode.arcs import ArcForm, helix_feed_ratio, split
 from cncc.backends.gcode.frames import TargetFrame, add, sub
+from cncc.backends.gcode.keep_transforms import scale_codes, scale_words
 from cncc.backends.gcode.numbers import counts_text, fixed, quantize
 from cncc.backends.gcode.target import Target, make_target
 from cncc.diagnostics import DiagnosticSink
@@ -65,7 +66,7 @@ from cncc.ir import (
     Vec6,
     Wait,
 )
-from cncc.ir.frame import Mirror, Rotation
+from cncc.ir.frame import Mirror, Rotation, Scaling
 from cncc.source import NO_SPAN, Span
 
 AXES = "XYZABC"
@@ -125,6 +126,7 @@ class GcodeEmitter:
         self.all_axes = False  # the next move writes X, Y and Z (the first move of a call)
         self.rotation: Rotation | None = None  # the G68 record the output has in force
         self.mirror: Mirror | None = None  # the G51.1 record the output has in force
+        self.scaling: Scaling | None = None  # the G51 record the output has in force
 
     # ---- numbers --------------------------------------------------------------------------
     @property
@@ -326,14 +328,19 @@ class GcodeEmitter:
                                     "coordinates")
         mirror = f.mirror != self.mirror and self.t.has("mirror_on")
         rotation = f.rotation != self.rotation and self.t.has("rotate_on")
-        if (mirror or rotation) and self.cycle_initial is not None and not lines:
+        scaling = f.scaling != self.scaling and self.t.has("scale_on")
+        if (mirror or rotation or scaling) and self.cycle_initial is not None and not lines:
             lines.append(self.block([self.t.code("cycle_off")]))
             self.cycle_initial = None
         self.sync_poison = True
+        if scaling and self.scaling is not None:  # off first: SYNTEC's G50 also cancels a mirror
+            lines.append(self._scaling_block(None))
         if mirror:
             lines += self._mirror_blocks(f.mirror)
         if rotation:
             lines.append(self._rotation_block(f.rotation))
+        if scaling and f.scaling is not None:
+            lines.append(self._scaling_block(f.scaling))
         self.sync_poison = False
         yield from lines
 
@@ -352,6 +359,18 @@ class GcodeEmitter:
                                    *(f"{AXES[k]}{self.length(m.center_mm[k] + fold[k])}" for k in range(3)
                                      if m.axes[k])]))
         return out
+
+    def _scaling_block(self, s: Scaling | None) -> str:
+        """G51 (SZGH G36, alone in its block) with the kept record's centre and factors, or G50 (G37)."""
+        self.scaling = s
+        self.qpos = None
+        on, off = scale_codes(self.t)
+        if s is None:
+            return self.block([off])
+        words = scale_words(self.t, s)
+        assert words is not None, "keep_transforms keeps only writable scalings"
+        fold = self.fold or (0.0,) * 6
+        return self.block([on, *(f"{AXES[k]}{self.length(s.center_mm[k] + fold[k])}" for k in words[0]), *words[1]])
 
     def _rotation_block(self, r: Rotation | None) -> str:
         """G68 with the kept record (centre in the target's program coordinates, angle in degrees), or G69."""

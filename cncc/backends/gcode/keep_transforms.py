@@ -1,19 +1,27 @@
-"""Which G68 rotations and G51.1 mirrors a translation keeps as codes instead of applying them.
+"""Which G68 rotations, G51.1 mirrors and G51 scalings a translation keeps as codes.
 
 Consumes the front end's IR commands (frames still carry their rotation and mirror
-records); produces the set of :class:`~cncc.ir.frame.Rotation` and
-:class:`~cncc.ir.frame.Mirror` records the target runs itself.  The driver tells the
-``rotation`` and ``mirror`` passes to leave those records alone, and the emitter
-writes ``G68 X Y R`` / ``G51.1 X Y`` (SZGH ``G11``) when a command's frame gains one
-and ``G69`` / ``G50.1`` (``G12``) when it loses it, with the positions untransformed.
+records); produces the set of :class:`~cncc.ir.frame.Rotation`,
+:class:`~cncc.ir.frame.Mirror` and :class:`~cncc.ir.frame.Scaling` records the target
+runs itself.  The driver tells the ``rotation``, ``mirror`` and ``scaling`` passes to
+leave those records alone, and the emitter writes ``G68 X Y R`` / ``G51.1 X Y`` (SZGH
+``G11``) / ``G51 X Y Z P`` or ``I J K`` (SZGH ``G36 X Y Z R``) when a command's frame
+gains one and ``G69`` / ``G50.1`` (``G12``) / ``G50`` (``G37``) when it loses it, with
+the positions untransformed.  :func:`scale_words` is the one place that says how a
+scaling is written, for the decision and the emitter alike.
 
 A record is kept only when the target moves exactly as cncc's pass would:
 
 * the target has the on and off codes (``rotate_on``/``rotate_off``,
-  ``mirror_on``/``mirror_off``; every front end reads the mirror codes alike: the
-  named axes replace the mirror in force);
-* every command carrying the record: no cutter compensation, polar mode, scaling and
-  no other of the two transforms; for a rotation its plane selected; no G53 or
+  ``mirror_on``/``mirror_off``, ``scale_on``/``scale_off``; every front end reads the
+  mirror codes alike: the named axes replace the mirror in force; the scaling codes
+  are swapped when the target's ``g50_is_cancel`` is false);
+* for a scaling, factors the target's words say exactly (``P`` uniform, ``I J K`` per
+  axis, SZGH ``R`` on the named axes: one factor, the other axes unscaled; ``R`` read
+  as a divisor under ``scale_r_semantics = "divide"``), no arc whose plane axes are
+  scaled differently and no canned cycle under it;
+* every command carrying the record: no cutter compensation, polar mode and no other
+  of the three transforms; for a rotation its plane selected; no G53 or
   reference-return legs (they bypass the transform in the source but are written as
   ordinary moves); absolute distances (in G91 the pass maps the increment from the
   actual start, which the G90 output cannot say); the same offsets, tool length and
@@ -32,31 +40,73 @@ from __future__ import annotations
 
 from collections.abc import Callable, Sequence
 
+from cncc.backends.gcode.numbers import fixed
 from cncc.backends.gcode.target import Target
 from cncc.ir import Arc, Command, CompSide, Cycle, Frame, Linear, Rapid, Units
-from cncc.ir.frame import Mirror, Rotation
+from cncc.ir.frame import Mirror, Rotation, Scaling
 
 StepMm = Callable[[Units], float]  # output resolution in mm for a frame's units
 COMP_AFTER = 3  # motions after a transform whose compensation would see its coordinates
-Record = Rotation | Mirror
+SCALE_DECIMALS = 6  # G51 P / I J K, G36 R: always with a point (no scale_factor_unit)
+Record = Rotation | Mirror | Scaling
 
 
 def _record(f: Frame, kind: type) -> Record | None:
-    return f.rotation if kind is Rotation else f.mirror
+    return f.rotation if kind is Rotation else f.mirror if kind is Mirror else f.scaling
 
 
 def _frame_ok(f: Frame, r: Record) -> bool:
-    if f.comp_side is not CompSide.OFF or f.polar is not None or f.scaling is not None or f.machine_coords:
+    if f.comp_side is not CompSide.OFF or f.polar is not None or f.machine_coords:
         return False
-    if isinstance(r, Rotation):
-        return f.mirror is None and f.plane is r.plane
-    return f.rotation is None
+    others = [x for x in (f.rotation, f.mirror, f.scaling) if x is not None and x is not r]
+    return not others and (not isinstance(r, Rotation) or f.plane is r.plane)
 
 
-def _centre(r: Record) -> tuple[float, ...]:
+def _centre(r: Record, target: Target) -> tuple[float, ...]:
     if isinstance(r, Rotation):
         return r.center_mm
+    if isinstance(r, Scaling):
+        words = scale_words(target, r)
+        return tuple(r.center_mm[k] for k in words[0]) if words else ()
     return tuple(c for c, on in zip(r.center_mm, r.axes, strict=True) if on)
+
+
+def _swapped(target: Target) -> bool:
+    names = {target.code("scale_on"), target.code("scale_off")}
+    return target.option("g50_is_cancel", True) is False and names == {"G50", "G51"}
+
+
+def scale_codes(target: Target) -> tuple[str, str]:
+    """The target's scaling on and off codes (G51/G50 swapped when ``g50_is_cancel`` is false)."""
+    on, off = target.code("scale_on"), target.code("scale_off")
+    return (off, on) if _swapped(target) else (on, off)
+
+
+def _factor_text(f: float) -> str | None:
+    text = fixed(f, SCALE_DECIMALS)
+    return text if float(text) == f else None
+
+
+def scale_words(target: Target, s: Scaling) -> tuple[tuple[int, ...], list[str]] | None:
+    """The axes whose centre the on code names and its factor words; None: not writable exactly."""
+    cdef = target.by_op.get("scale_off" if _swapped(target) else "scale_on")  # the words its table lets it read
+    kinds = cdef.words if cdef is not None else {}
+    scaled = tuple(k for k in range(3) if s.factors[k] != 1.0)
+    uniform = len(set(s.factors)) == 1
+    if "P" in kinds and uniform:
+        text = _factor_text(s.factors[0])
+        return ((0, 1, 2) if scaled else (), [f"P{text}"]) if text else None
+    if all(a in kinds for a in "IJK"):
+        texts = [_factor_text(f) for f in s.factors]
+        return (scaled, [f"{a}{t}" for a, t in zip("IJK", texts, strict=True)]) if all(texts) else None
+    if "R" in kinds and len({s.factors[k] for k in scaled}) <= 1:
+        f = s.factors[scaled[0]] if scaled else 1.0
+        divide = target.option("scale_r_semantics", "multiply") == "divide"
+        text = fixed(1.0 / f, SCALE_DECIMALS) if divide else _factor_text(f)
+        if text is None or (divide and 1.0 / float(text) != f):
+            return None
+        return (scaled if len(scaled) < 3 else (0, 1, 2), [f"R{text}"])
+    return None
 
 
 def _written_exactly(value_mm: float, step_mm: float) -> bool:
@@ -69,20 +119,32 @@ def _state(f: Frame) -> tuple[object, ...]:
 
 
 def kept_transforms(cmds: Sequence[Command], target: Target, step_mm: StepMm) -> frozenset[Record]:
-    """The rotation and mirror records the target can run itself for this program."""
+    """The rotation, mirror and scaling records the target can run itself for this program."""
     motions = [c for c in cmds if isinstance(c, Rapid | Linear | Arc | Cycle)]
     kept: set[Record] = set()
-    for kind, on, off in ((Rotation, "rotate_on", "rotate_off"), (Mirror, "mirror_on", "mirror_off")):
+    for kind, on, off in ((Rotation, "rotate_on", "rotate_off"), (Mirror, "mirror_on", "mirror_off"),
+                          (Scaling, "scale_on", "scale_off")):
         if target.has(on) and target.has(off):
-            kept |= _kept(cmds, motions, kind, step_mm)
+            kept |= _kept(cmds, motions, kind, step_mm, target)
     for k in range(1, len(motions)):  # an increment mapped by cncc starts where a kept transform left
         f, before = motions[k].frame, motions[k - 1].frame
-        if f.incremental and any(r is not None and r not in kept for r in (f.rotation, f.mirror)):
-            kept.difference_update((before.rotation, before.mirror))
+        if f.incremental and any(r is not None and r not in kept for r in (f.rotation, f.mirror, f.scaling)):
+            kept.difference_update((before.rotation, before.mirror, before.scaling))
     return frozenset(kept)
 
 
-def _kept(cmds: Sequence[Command], motions: Sequence[Command], kind: type, step_mm: StepMm) -> set[Record]:
+def _scaling_bad(c: Command, r: Record, target: Target) -> bool:
+    if not isinstance(r, Scaling):
+        return False
+    if isinstance(c, Cycle) or scale_words(target, r) is None:
+        return True
+    if isinstance(c, Arc):
+        return r.factors[c.plane.first] != r.factors[c.plane.second]
+    return False
+
+
+def _kept(cmds: Sequence[Command], motions: Sequence[Command], kind: type, step_mm: StepMm,
+          target: Target) -> set[Record]:
     bad: set[Record] = set()
     seen: dict[Record, tuple[object, ...]] = {}
     for c in cmds:
@@ -94,7 +156,7 @@ def _kept(cmds: Sequence[Command], motions: Sequence[Command], kind: type, step_
         step = step_mm(c.frame.units)
         motion = isinstance(c, Rapid | Linear | Arc | Cycle)
         if (first != state or not _frame_ok(c.frame, r) or (motion and c.frame.incremental)
-                or not all(_written_exactly(v, step) for v in _centre(r))
+                or not all(_written_exactly(v, step) for v in _centre(r, target)) or _scaling_bad(c, r, target)
                 or (isinstance(c, Rapid | Linear | Arc) and (c.origin == "G53" or c.origin.endswith(" ref")))):
             bad.add(r)
     for k, m in enumerate(motions):  # compensation next to a transform

@@ -8,7 +8,7 @@ rotation and compensation records; cycles are whole); produces the same stream, 
   note N0806 naming the reason; hole patterns noted (N0807) — they are always
   written as their list of holes;
 * a note for every programmable transform cncc applies itself (N0801-N0805): the
-  output carries the transformed coordinates.  Rotations and mirrors the target runs itself
+  output carries the transformed coordinates.  Rotations, mirrors and scalings the target runs itself
   (:mod:`cncc.backends.gcode.keep_transforms`) get no note.
 
 Under ``-Werror`` the notes are errors: the target does not do what the source asked
@@ -50,13 +50,13 @@ def prepare(cmds: Iterable[Command], target: Target, expand: Expand, sink: Diagn
             kept: frozenset[object] = frozenset()) -> Iterator[Command]:
     """Expand the cycles the target cannot keep and note the transforms cncc applies.
 
-    ``kept``: the rotation and mirror records the target runs itself (no N0801/N0803).
+    ``kept``: the rotation, mirror and scaling records the target runs itself (no N0801-N0803).
     """
     seen: set[str] = set()
     for c in cmds:
         f = c.frame
         for attr, code, message in _TRANSFORMS:
-            if attr in ("rotation", "mirror") and getattr(f, attr) in kept:
+            if attr in ("rotation", "mirror", "scaling") and getattr(f, attr) in kept:
                 continue
             if getattr(f, attr) is not None and code not in seen:
                 seen.add(code)
