@@ -60,6 +60,8 @@ AXIS_CONSUMERS = frozenset({"home", "home2", "home_return", "set_origin", "local
                             "dwell", "scale_on", "mirror_on", "mirror_off", "rotate_on", "tool_measure",
                             "tool_measure2", "macro_call", "modal_call"})
 MODAL_FREE_GROUPS = frozenset({"non_modal"})
+_OFF_AT_POWER_ON = frozenset({"scaling", "mirror", "rotation", "polar", "cutter_comp", "length_comp", "modal_macro",
+                              "cycle"})
 
 
 @dataclass(slots=True)
@@ -114,9 +116,17 @@ class Interpreter:
 
     # ---- set-up
     def _apply_defaults(self) -> None:
-        """Apply the dialect's power-on codes without emitting anything."""
+        """Apply the dialect's power-on codes without emitting anything.
+
+        Groups whose power-on state is "off" (transforms, compensation, cycles, modal
+        calls) are already off in a fresh frame and modal state; their default code is
+        only recorded, not run, because an option may give it another meaning
+        (SYNTEC ``g50_is_cancel = false`` makes G50 the scaling *on* code).
+        """
         scratch: list[Command] = []
-        for code in self.dialect.defaults.values():
+        for group, code in self.dialect.defaults.items():
+            if group in _OFF_AT_POWER_ON:
+                continue
             letter = code[0]
             cdef = self.dialect.code(letter, code_tenths(code[1:]))
             if cdef is None or cdef.op not in self.handlers:

@@ -77,7 +77,16 @@ def test_g50_is_cancel_false_names_the_swapped_codes_or_applies_the_scaling() ->
     swapped = {"g50_is_cancel": False}
     r = compile_text(text, dialect="syntec", emit="gcode", target="syntec", target_options=swapped,
                      **TABLES)  # type: ignore[arg-type]
-    # the swapped on code is G50, whose table entry takes no P/I/J/K: the target could not read
-    # "G50 X0. Y0. P2.", so cncc scales (20, 5) by 2 itself and writes no G51 (a cancel there)
-    assert "G50 X0. Y0." not in r.output and "X40. Y10." in r.output
-    assert "N0802" in [d.code for d in r.sink]
+    # with the codes swapped, G50 (which takes P/I/J/K in syntec.toml) scales and G51 cancels
+    got = lines(r.output)
+    assert "G50 X0. Y0. Z-1. P2." in got and "G51" in got and "X40. Y10." not in r.output
+    assert "N0802" not in [d.code for d in r.sink]
+    # and the swapped target reads its own output back to the same motion
+    from cncc.api import compile_commands
+    from cncc.ir import Linear
+
+    want, r1 = compile_commands(text, **TABLES)  # type: ignore[arg-type]
+    back, r2 = compile_commands(r.output, dialect_options=swapped, **TABLES)  # type: ignore[arg-type]
+    assert r1.ok and r2.ok
+    ends = [[round(v, 6) for v in c.end[:3]] for c in want if isinstance(c, Linear)]
+    assert [[round(v, 6) for v in c.end[:3]] for c in back if isinstance(c, Linear)] == ends
