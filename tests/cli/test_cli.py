@@ -118,3 +118,11 @@ def test_rapid_type_option_reaches_the_machine() -> None:
     assert m.rapid_mode is RapidMode.INDEPENDENT and not list(sink)
     apply_dialect_to_machine(default_machine(), Options(dialect_options={"rapid_type": "dogleg"}), sink)
     assert [d.code for d in sink] == ["E0904"]
+
+
+def test_readme_pulse_command_runs(tmp_path: Path) -> None:
+    out = tmp_path / "p.vcd"
+    p = run(["examples/contour.nc", "--emit=pulses", "--pulse-format=vcd", "--offsets", "examples/offsets.toml",
+             "-o", str(out)])
+    assert p.returncode == 0, p.stderr
+    assert out.read_text().startswith("$comment cncc step/dir pulses $end")
