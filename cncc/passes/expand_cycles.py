@@ -203,16 +203,22 @@ def _stop_rapid_out(p: _Path) -> None:
     p.spindle(p.forward)
 
 
-def _fine_bore(p: _Path) -> None:
+def _dwell_orient_shift_out(p: _Path) -> None:
+    """At the bottom: dwell, oriented stop, shift off the wall, rapid out, shift back, restart."""
     c = p.c
-    p.rapid(p.at(c.r_mm))
-    p.feed(p.at(c.bottom_mm))
     p.dwell()
     p.spindle(SpindleState.ORIENT)
     p.rapid(p.at(c.bottom_mm, shifted=True))
     p.rapid(p.at(c.retract_mm, shifted=True))
     p.rapid(p.at(c.retract_mm))
     p.spindle(p.forward)
+
+
+def _fine_bore(p: _Path) -> None:
+    c = p.c
+    p.rapid(p.at(c.r_mm))
+    p.feed(p.at(c.bottom_mm))
+    _dwell_orient_shift_out(p)
 
 
 def _back_bore(p: _Path) -> None:
@@ -224,12 +230,7 @@ def _back_bore(p: _Path) -> None:
     p.rapid(p.at(c.r_mm))
     p.spindle(p.forward)
     p.feed(p.at(c.bottom_mm))
-    p.dwell()
-    p.spindle(SpindleState.ORIENT)
-    p.rapid(p.at(c.bottom_mm, shifted=True))
-    p.rapid(p.at(c.retract_mm, shifted=True))
-    p.rapid(p.at(c.retract_mm))
-    p.spindle(p.forward)
+    _dwell_orient_shift_out(p)
 
 
 def _manual(p: _Path) -> None:
