@@ -8,7 +8,8 @@ exactly like a planned one.
 Rapids run at the machine's rapid rates (interpolated: the slowest axis sets the
 time and all axes finish together; independent: each axis at its own rate, the
 longest wins, a dog-leg path), feeds at the programmed feed along the path (arcs
-along their helical length), with no acceleration at all: that is what the planner
+along their helical length; a G95 line under constant surface speed integrates
+1/feed along the move, :meth:`cncc.ir.css.Css.time_s`), with no acceleration at all: that is what the planner
 levels add.  Non-motion commands (dwells, tool changes, spindle starts, stops) are
 events; :mod:`cncc.backends.timing.events` gives their times.
 """
@@ -83,12 +84,20 @@ def feed_time_s(length_mm: float, feed_mm_min: float) -> float:
     return length_mm / (feed_mm_min / 60.0) if feed_mm_min > 0 else 0.0
 
 
+def linear_time_s(c: Linear) -> float:
+    """Length / feed; under CSS (``motion.css``) the exact time with the spindle speed following the radius."""
+    if c.motion.css is not None:
+        css = c.motion.css
+        return css.time_s(linear_length_mm(c), c.start, c.end, c.frame.total_offset_mm[css.axis])
+    return feed_time_s(linear_length_mm(c), c.feed_mm_min)
+
+
 def command_time_s(c: Command, machine: MachineModel) -> tuple[float, str]:
     match c:
         case Rapid():
             return rapid_time_s(c.start, c.end, machine), "rapid"
         case Linear():
-            return feed_time_s(linear_length_mm(c), c.feed_mm_min), "feed"
+            return linear_time_s(c), "feed"
         case Arc():
             return feed_time_s(arc_length_mm(c), c.feed_mm_min), "arc"
         case Dwell():
@@ -209,7 +218,7 @@ def nominal_trajectory(cmds: Sequence[Command], machine: MachineModel) -> Trajec
             case Rapid():
                 _rapid_rows(rows, c, i, machine, int(Limit.RAPID))
             case Linear():
-                rows.add(feed_time_s(linear_length_mm(c), c.feed_mm_min), c.start, c.end, i, int(Limit.FEED))
+                rows.add(linear_time_s(c), c.start, c.end, i, int(Limit.FEED))
             case Arc():
                 _arc_rows(rows, c, i, int(Limit.FEED))
     if not rows.dur_s:

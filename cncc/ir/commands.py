@@ -16,6 +16,7 @@ import enum
 from dataclasses import dataclass, field
 from typing import Any
 
+from cncc.ir.css import Css
 from cncc.ir.frame import Frame, Plane, Vec6
 from cncc.source import Span
 
@@ -36,6 +37,7 @@ class Motion:
     blend_tolerance_mm: float | None = None  # None: the machine default
     inverse_time: bool = False
     per_rev: bool = False  # G95: feed is per spindle revolution
+    css: Css | None = None  # G95 under G96: the spindle speed follows the radius (feed_mm_min is at the start)
 
 
 DEFAULT_MOTION = Motion()

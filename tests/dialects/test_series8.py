@@ -271,15 +271,52 @@ def test_e001_18_css_facing_moves_and_records() -> None:
     assert r.ok, [d.message for d in r.sink]
     kinds = [(type(c).__name__, tuple(round(v / IN, 4) for v in c.end[:3])) for c in cmds
              if type(c).__name__ in ("Rapid", "Linear")]
-    assert kinds == [("Rapid", (8.0, 0.0, 0.0)), ("Linear", (-0.01, 0.0, 0.0)), ("Linear", (-0.01, 0.0, 0.1))]
+    # a lathe program (G92 R S, G96): X is a diameter (A-25), the IR holds the radius
+    assert kinds == [("Rapid", (4.0, 0.0, 0.0)), ("Linear", (-0.005, 0.0, 0.0)), ("Linear", (-0.005, 0.0, 0.1))]
     ref = next(c for c in cmds if type(c).__name__ == "SetMode" and c.name == "css_reference")
-    assert ref.value == pytest.approx((4 * IN, 8 * IN))  # R4 at the current X (the G92 R S form, not a preset)
+    assert ref.value == pytest.approx((4 * IN, 4 * IN))  # R4 at the current X (the G92 R S form, not a preset)
     speeds = [c.rpm for c in cmds if type(c).__name__ == "SpindleSpeed"]
     assert speeds == [300.0]  # S600 is the clamp of G92 R S, not a spindle speed
     assert not any(type(c).__name__ == "SetMode" and c.name == "g92_offset" for c in cmds)
     # The initial and top speeds the spec derives: 300 ft/min on a 4 in radius, 600 rpm below r*.
     assert 300 * 12 / (2 * math.pi * 4) == pytest.approx(143.24, abs=0.01)
     assert 3600 / (2 * math.pi * 600) == pytest.approx(0.954930, abs=1e-6)
+
+
+def _facing_min(r0_in: float, r1_in: float, sfm: float, clamp_rpm: float, ipr: float) -> float:
+    """Minutes of a radial move r0 -> r1 (0 <= r1 < r0 or through the centre) at F ipr under CSS:
+    integral of dr / (F rpm(r)), rpm = min(clamp, 12 sfm / (2 pi r)), in closed form per piece."""
+    r_star = 12 * sfm / (2 * math.pi * clamp_rpm)
+    outside = math.pi * (r0_in**2 - r_star**2) / (12 * sfm * ipr)  # r0 down to r*, below the clamp
+    inside = (r_star + abs(r1_in)) / (clamp_rpm * ipr)  # r* to r1 at the clamp (|r1| < r*)
+    return outside + inside
+
+
+def test_e001_18_nominal_time_integrates_the_css_speed() -> None:
+    t = nominal("M03\n" + E001_18, S8)
+    feeds = [s for c, s, cat in t.by_command if cat == "feed"]
+    facing_s = 60 * _facing_min(4.0, -0.005, 300, 600, 0.005)  # X is a diameter: r = X / 2
+    assert facing_s == pytest.approx(177.20, abs=0.01)  # the spec's derived value
+    assert feeds == [pytest.approx(facing_s, abs=1e-6), pytest.approx(60 * 0.1 / (600 * 0.005), abs=1e-6)]
+    assert feeds[1] == pytest.approx(2.0, abs=1e-6)  # G01 Z.1 at 600 rpm x 0.005 = 3 in/min
+
+
+def test_e001_18_x_as_radius_option() -> None:
+    # With X a radius (A-25's alternative) the tool ends 0.01 in past centre; the
+    # manual's "diameter of 8 inches" is then X4. (the same start radius as G92 R4.).
+    t = nominal("M03\n" + E001_18.replace("G00X8.", "G00X4.", 1), S8, dialect_options={"lathe_diameter_x": False})
+    feeds = [s for c, s, cat in t.by_command if cat == "feed"]
+    facing_s = 60 * _facing_min(4.0, -0.01, 300, 600, 0.005)
+    assert facing_s == pytest.approx(177.30, abs=0.01)  # the spec's A-25 figure
+    assert feeds == [pytest.approx(facing_s, abs=1e-6), pytest.approx(2.0, abs=1e-6)]
+
+
+def test_diameter_x_only_in_lathe_programs() -> None:
+    # no G96 / G92 R S: a mill program, X stays a position; G04 X in a lathe program is a time
+    assert _xyz(moves("G00X8.Z1.\n", S8)) == [("STRAIGHT_TRAVERSE", (8.0, 0.0, 1.0))]
+    t = nominal("G00X8.\nG04X2.\nG96S100\n", S8)
+    assert t.by_category_s["dwell"] == pytest.approx(2.0)
+    assert [round(c.end[0] / IN, 4) for c, _, cat in t.by_command if cat == "rapid"] == [4.0]
 
 
 def test_e001_18_g92_with_both_forms_is_an_error() -> None:

@@ -14,6 +14,8 @@ modal interpreter does not do by itself:
 * :mod:`~cncc.frontend.series8.corners` - G10 inserted radius and chamfer, the
   perpendicular cutter-compensation start-up;
 * :mod:`~cncc.frontend.series8.cycles` - G81-G89 with their own words.
+* :mod:`~cncc.frontend.series8.lathe` - X as a diameter in lathe programs (A-25),
+  the constant-surface-speed record on G95 moves under G96.
 
 The submodules register into :mod:`cncc.frontend.ops` when
 :func:`~cncc.frontend.series8.front.lower_series8` first imports them; their hooks act

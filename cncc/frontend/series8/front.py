@@ -24,8 +24,8 @@ from cncc.frontend.series8 import arcs as _arcs  # noqa: F401  (registers the ar
 from cncc.frontend.series8 import cavities as _cavities  # noqa: F401  (registers G34-G36)
 from cncc.frontend.series8 import codes as _codes  # noqa: F401  (registers the SERIES 8 ops)
 from cncc.frontend.series8 import cycles as _cycles  # noqa: F401  (registers G81-G89)
+from cncc.frontend.series8 import lathe, state
 from cncc.frontend.series8 import patterns as _patterns  # noqa: F401  (registers G49/G50)
-from cncc.frontend.series8 import state
 from cncc.frontend.series8.corners import Stream
 from cncc.frontend.syntax import Block
 from cncc.ir import Arc, Command, Linear, Rapid, Units
@@ -36,6 +36,7 @@ def lower_series8(src: SourceFile, dialect: Dialect, sink: DiagnosticSink, optio
     parser = Parser(dialect, sink, ParseOptions(strict=options.strict))
     it = Interpreter(dialect, sink, src.source_id, options)
     st = state.attach(it)
+    st.x_diameter = bool(dialect.option("lathe_diameter_x", True)) and lathe.is_lathe_program(src.text)
     it.modal = it.modal.with_(cycle_return_initial=False)  # every SERIES 8 cycle returns to R
     stream = Stream(sink)
     for block in parser.blocks(src):
@@ -44,7 +45,7 @@ def lower_series8(src: SourceFile, dialect: Dialect, sink: DiagnosticSink, optio
         units = it.frame.units
         st.corner = None
         st.feed_before = it.modal.feed
-        cmds = it.execute(block)
+        cmds = lathe.with_css(it, it.execute(block))
         if st.restore_incremental is not None:
             it.modal = it.modal.with_(incremental=st.restore_incremental)
             st.restore_incremental = None

@@ -43,6 +43,7 @@ class S8State:
     dwell_f: Word | None = None  # G04 F: the dwell time taken out of the block
     inverse_f: float | None = None  # G93: the last F (1/min), carried to the next feed blocks
     css_reference: tuple[float, float] | None = None  # G92 R: (radius mm, X mm where it was given)
+    x_diameter: bool = False  # lathe program with lathe_diameter_x: X words are diameters
     vendor_noted: set[str] = field(default_factory=set)  # G34-G36, G49/G50 whose reading was announced
 
 

@@ -154,6 +154,9 @@ def _add_motion(b: _Builder, cmd: Rapid | Linear | Arc, index: int, machine: Mac
 
 def _feed_mm_s(cmd: Linear | Arc, machine: MachineModel, sink: DiagnosticSink, warned: set[str]) -> float:
     feed = cmd.feed_mm_min
+    if isinstance(cmd, Linear) and cmd.motion.css is not None:  # CSS: the slowest feed along the move
+        css = cmd.motion.css
+        feed = css.slowest_feed_mm_min(cmd.start, cmd.end, cmd.frame.total_offset_mm[css.axis])
     if not feed > 0:
         sink.emit(dg.BAD_FEED, cmd.span, f"feed {feed:g} mm/min is not positive; using the machine default "
                   f"{machine.default_feed_mm_min:g} mm/min")
