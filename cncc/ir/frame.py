@@ -140,3 +140,15 @@ class Frame:
 
 
 IDENTITY_FRAME = Frame()
+
+
+def add_offsets(p: Vec6, frame: Frame) -> Vec6:
+    """Program coordinates of ``frame`` -> the same point plus the frame's total offset."""
+    o = frame.total_offset_mm
+    return (p[0] + o[0], p[1] + o[1], p[2] + o[2], p[3] + o[3], p[4] + o[4], p[5] + o[5])
+
+
+def sub_offsets(b: Vec6, frame: Frame) -> Vec6:
+    """The inverse of :func:`add_offsets`."""
+    o = frame.total_offset_mm
+    return (b[0] - o[0], b[1] - o[1], b[2] - o[2], b[3] - o[3], b[4] - o[4], b[5] - o[5])

@@ -29,6 +29,7 @@ from typing import ClassVar
 
 from cncc import diagnostics as dg
 from cncc.ir import Arc, Command, CompSide, Cycle, Frame, Linear, Plane, Rapid, Vec6
+from cncc.ir.frame import add_offsets, sub_offsets
 from cncc.passes import Pass, PassContext
 
 Mat3 = tuple[tuple[float, float, float], tuple[float, float, float], tuple[float, float, float]]
@@ -84,16 +85,6 @@ def flip_side(side: CompSide) -> CompSide:
     return side
 
 
-def _base(p: Vec6, frame: Frame) -> Vec6:
-    o = frame.total_offset_mm
-    return (p[0] + o[0], p[1] + o[1], p[2] + o[2], p[3] + o[3], p[4] + o[4], p[5] + o[5])
-
-
-def _local(b: Vec6, frame: Frame) -> Vec6:
-    o = frame.total_offset_mm
-    return (b[0] - o[0], b[1] - o[1], b[2] - o[2], b[3] - o[3], b[4] - o[4], b[5] - o[5])
-
-
 @dataclass(frozen=True, kw_only=True)
 class AffinePass(Pass):
     """Base of the transform passes; subclasses say which record they apply."""
@@ -120,17 +111,17 @@ class AffinePass(Pass):
             _, aff, nf = entry
             if isinstance(c, Rapid | Linear | Arc):
                 out = self._motion(c, aff, nf, last, ctx)
-                last = _base(out.end, nf)
+                last = add_offsets(out.end, nf)
                 yield out
             elif isinstance(c, Cycle):  # kept whole for the G-code backend (untransformed frames only)
-                last = _base(c.holes[-1], nf)
+                last = add_offsets(c.holes[-1], nf)
                 yield c if nf is frame else replace(c, frame=nf)
             else:
                 yield c if nf is frame else replace(c, frame=nf)
 
     def _motion(self, c: Rapid | Linear | Arc, aff: Affine | None, nf: Frame, last: Vec6 | None,
                 ctx: PassContext) -> Rapid | Linear | Arc:
-        start = c.start if last is None else _local(last, nf)
+        start = c.start if last is None else sub_offsets(last, nf)
         bypass = aff is None or c.origin == "G53" or c.origin.endswith(" ref")
         if bypass or aff is None:
             if start == c.start and nf is c.frame:

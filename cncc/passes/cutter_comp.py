@@ -42,6 +42,7 @@ from typing import ClassVar
 from cncc import diagnostics as dg
 from cncc.diagnostics import Related
 from cncc.ir import Arc, Command, CompSide, Cycle, Frame, Linear, Plane, Rapid, Vec6
+from cncc.ir.frame import add_offsets, sub_offsets
 from cncc.passes import Pass, PassContext, register
 from cncc.passes.comp_geometry import (
     EPS,
@@ -86,16 +87,6 @@ class _Pending:
     plane: Plane
     startup: bool
     neighbours: list[Related] = field(default_factory=list)  # the blocks whose corners trimmed it
-
-
-def _base(p: Vec6, frame: Frame) -> Vec6:
-    o = frame.total_offset_mm
-    return (p[0] + o[0], p[1] + o[1], p[2] + o[2], p[3] + o[3], p[4] + o[4], p[5] + o[5])
-
-
-def _local(b: Vec6, frame: Frame) -> Vec6:
-    o = frame.total_offset_mm
-    return (b[0] - o[0], b[1] - o[1], b[2] - o[2], b[3] - o[3], b[4] - o[4], b[5] - o[5])
 
 
 def _with_plane(p: Vec6, plane: Plane, q: Pt) -> Vec6:
@@ -180,21 +171,21 @@ class _Comp:
         return abs(c.end[i] - c.start[i]) > EPS or abs(c.end[j] - c.start[j]) > EPS
 
     def _start(self, c: Motion, nf: Frame) -> Vec6:
-        return c.start if self.last is None else _local(self.last, nf)
+        return c.start if self.last is None else sub_offsets(self.last, nf)
 
     def _plain(self, c: Command, plane_end: Pt | None = None, plane: Plane | None = None) -> Iterator[Command]:
         """Emit ``c`` uncompensated, starting where the tool is (optionally ending at ``plane_end``)."""
         nf = self._frame(c.frame)
         if not isinstance(c, Rapid | Linear | Arc):
             if isinstance(c, Cycle):  # kept whole for the G-code backend: the tool ends at the last hole
-                self.last = _base(c.holes[-1], nf)
+                self.last = add_offsets(c.holes[-1], nf)
             yield c if nf is c.frame else replace(c, frame=nf)
             return
         start = self._start(c, nf)
         end = c.end
         if plane_end is not None and plane is not None:
-            end = _local(_with_plane(_base(c.end, c.frame), plane, plane_end), c.frame)
-        self.last = _base(end, nf)
+            end = sub_offsets(_with_plane(add_offsets(c.end, c.frame), plane, plane_end), c.frame)
+        self.last = add_offsets(end, nf)
         if start == c.start and end == c.end and nf is c.frame:
             yield c
         elif isinstance(c, Rapid):
@@ -208,11 +199,11 @@ class _Comp:
         f = c.frame
         plane = f.plane
         i, j = plane.first, plane.second
-        b0, b1 = _base(c.start, f), _base(c.end, f)
+        b0, b1 = add_offsets(c.start, f), add_offsets(c.end, f)
         side = 1.0 if f.comp_side is CompSide.LEFT else -1.0
         el = Element((b0[i], b0[j]), (b1[i], b1[j]), side, f.comp_radius_mm)
         if isinstance(c, Arc):
-            bc = _base(c.center, f)
+            bc = add_offsets(c.center, f)
             el.center = (bc[i], bc[j])
             el.ccw = c.turns > 0
             el.sweep = arc_sweep(el.p0, el.p1, el.center, el.ccw, c.turns)
@@ -232,7 +223,7 @@ class _Comp:
                 yield from self._connect(c, el.q0)
             elif self.opts.startup == "perpendicular" and not isinstance(c, Arc):
                 if self.last is None:
-                    self.last = _base(c.start, c.frame)
+                    self.last = add_offsets(c.start, c.frame)
                 yield from self._connect(c, el.q0)  # square off the start point; the element is cut whole
                 self.pending = _Pending(el, c, c.frame.plane, startup=False)
                 self.was_on = True
@@ -241,7 +232,7 @@ class _Comp:
                 if isinstance(c, Arc):
                     self.ctx.sink.emit(dg.COMP_ON_ARC, c.span, "cutter compensation cannot start on an arc; "
                                                                "program a G00/G01 start-up move")
-                cur = self.last if self.last is not None else _base(c.start, c.frame)
+                cur = self.last if self.last is not None else add_offsets(c.start, c.frame)
                 el.q0 = (cur[c.frame.plane.first], cur[c.frame.plane.second])
             self.pending = _Pending(el, c, c.frame.plane, startup=not self.was_on)
             self.was_on = True
@@ -331,10 +322,10 @@ class _Comp:
     def _offset_command(self, p: _Pending) -> Iterator[Command]:
         a, c = p.el, p.cmd
         nf = self._frame(c.frame)
-        start = _local(_with_plane(self.last if self.last is not None else _base(c.start, c.frame), p.plane, a.q0),
-                       nf)
-        end = _local(_with_plane(_base(c.end, c.frame), p.plane, a.q1), nf)
-        self.last = _base(end, nf)
+        base = self.last if self.last is not None else add_offsets(c.start, c.frame)
+        start = sub_offsets(_with_plane(base, p.plane, a.q0), nf)
+        end = sub_offsets(_with_plane(add_offsets(c.end, c.frame), p.plane, a.q1), nf)
+        self.last = add_offsets(end, nf)
         if isinstance(c, Rapid):
             yield Rapid(c.span, nf, start, end, c.motion, c.origin)
         elif isinstance(c, Linear) or a.center is None:
@@ -349,19 +340,19 @@ class _Comp:
             full = int(abs(sweep) // (2 * math.pi + 1e-9))
             if full and norm(sub(a.q0, a.q1)) > 1e-9:
                 turns = (full + 1) * (1 if turns > 0 else -1)
-            center = _local(_with_plane(_base(c.center, c.frame), p.plane, a.center), nf)
+            center = sub_offsets(_with_plane(add_offsets(c.center, c.frame), p.plane, a.center), nf)
             yield Arc(c.span, nf, start, end, center, turns, c.plane, c.feed_mm_min, c.motion, c.origin)
 
     def _connector(self, c: Motion, q: Pt, plane: Plane, arc_center: Pt | None, side: float) -> Iterator[Command]:
         nf = self._frame(c.frame)
         assert self.last is not None
-        start = _local(self.last, nf)
-        end = _local(_with_plane(self.last, plane, q), nf)
-        self.last = _base(end, nf)
+        start = sub_offsets(self.last, nf)
+        end = sub_offsets(_with_plane(self.last, plane, q), nf)
+        self.last = add_offsets(end, nf)
         if norm(sub((start[plane.first], start[plane.second]), q)) < 1e-9:
             return
         if arc_center is not None and not isinstance(c, Rapid):
-            center = _local(_with_plane(self.last, plane, arc_center), nf)
+            center = sub_offsets(_with_plane(self.last, plane, arc_center), nf)
             turns = -1 if side > 0 else 1  # around an outside corner the tool turns against its side
             yield Arc(c.span, nf, start, end, center, turns, plane, c.feed_mm_min, c.motion, c.origin)
         elif isinstance(c, Rapid):

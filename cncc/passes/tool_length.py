@@ -14,6 +14,7 @@ from dataclasses import dataclass, replace
 from typing import ClassVar
 
 from cncc.ir import Arc, Command, Frame, Linear, Rapid, Vec6
+from cncc.ir.frame import add_offsets
 from cncc.passes import Pass, PassContext, register
 
 
@@ -23,11 +24,6 @@ def _shift(p: Vec6, axis: int, d: float) -> Vec6:
     q = list(p)
     q[axis] += d
     return (q[0], q[1], q[2], q[3], q[4], q[5])
-
-
-def _base(p: Vec6, frame: Frame) -> Vec6:
-    o = frame.total_offset_mm
-    return (p[0] + o[0], p[1] + o[1], p[2] + o[2], p[3] + o[3], p[4] + o[4], p[5] + o[5])
 
 
 @register
@@ -58,7 +54,7 @@ class ToolLength(Pass):
                 o = f.total_offset_mm
                 start = (last[0] - o[0], last[1] - o[1], last[2] - o[2], last[3] - o[3], last[4] - o[4],
                          last[5] - o[5])
-            last = _base(end, f)
+            last = add_offsets(end, f)
             if nf is f and start == c.start and end == c.end:
                 yield c
             elif isinstance(c, Rapid):
