@@ -572,23 +572,4 @@ def write_output(text: str, path: str | None, inputs: list[str], sink: Diagnosti
     if path is None or path == "-":
         (stdout or sys.stdout).write(text)
         return True
-    real = os.path.realpath(path)
-    for inp in inputs:
-        if inp != "-" and os.path.exists(inp) and os.path.realpath(inp) == real:
-            sink.emit(dg.OUTPUT_IS_INPUT, NO_SPAN, f"refusing to overwrite the input file {path}")
-            return False
-    folder = os.path.dirname(real) or "."
-    try:
-        fd, tmp = tempfile.mkstemp(prefix=".cncc-", suffix=".tmp", dir=folder)
-        try:
-            with os.fdopen(fd, "w", encoding="utf-8", newline="\n") as fh:
-                fh.write(text)
-            os.replace(tmp, real)
-        except BaseException:
-            if os.path.exists(tmp):
-                os.unlink(tmp)
-            raise
-    except OSError as exc:
-        sink.emit(dg.CANNOT_WRITE, NO_SPAN, f"cannot write {path}: {exc.strerror or exc}")
-        return False
-    return True
+    return write_stream(path, inputs, sink, lambda fh: fh.write(text.encode("utf-8")))
