@@ -3,7 +3,8 @@
     python bench/run.py [--quick]
 
 Each script measures cncc beside a baseline in the same run (gcodeparser for the
-front end, the plain-block rate for macros, a numpy pass for pulses, -O3 and exact
+front end, gcodeparser and pygcode as whole processes for the pipeline, the plain-block
+rate for macros, a numpy pass for pulses, -O3 and exact
 stop for the planner) and prints ratios, so the figures compare across machines.
 ``--quick`` passes smaller sizes to each script (for a smoke run, not for figures).
 """
@@ -23,6 +24,7 @@ SCRIPTS = [
     ("planner.py", [], ["--quick"]),
     ("pulses.py", ["--steps", "100000000"], ["--steps", "2000000", "--repeat", "1"]),
     ("lsp.py", [], ["--lines", "2000", "--edits", "3"]),
+    ("pipeline.py", [], ["--lines", "20000"]),
 ]
 
 
