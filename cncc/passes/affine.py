@@ -85,6 +85,9 @@ def flip_side(side: CompSide) -> CompSide:
     return side
 
 
+_MOTIONS = (Rapid, Linear, Arc)
+
+
 @dataclass(frozen=True, kw_only=True)
 class AffinePass(Pass):
     """Base of the transform passes; subclasses say which record they apply."""
@@ -102,8 +105,19 @@ class AffinePass(Pass):
     def run(self, cmds: Iterable[Command], ctx: PassContext) -> Iterator[Command]:
         last: Vec6 | None = None  # actual end of the previous motion, program + offsets
         cache: dict[int, tuple[Frame, Affine | None, Frame]] = {}
+        # Fast path: once a motion went through unchanged (no transform in its frame), the
+        # next motion in the same frame object that starts where it ended goes through
+        # unchanged too, without per-command work; ``last`` is materialised on leaving.
+        through: Rapid | Linear | Arc | None = None
         for c in cmds:
             frame = c.frame
+            if through is not None:
+                if frame is through.frame and isinstance(c, _MOTIONS) and c.start == through.end:
+                    through = c
+                    yield c
+                    continue
+                last = add_offsets(through.end, through.frame)
+                through = None
             entry = cache.get(id(frame))
             if entry is None or entry[0] is not frame:
                 aff = self.affine(frame)
@@ -112,6 +126,8 @@ class AffinePass(Pass):
             if isinstance(c, Rapid | Linear | Arc):
                 out = self._motion(c, aff, nf, last, ctx)
                 last = add_offsets(out.end, nf)
+                if out is c and aff is None and nf is frame:
+                    through = c
                 yield out
             elif isinstance(c, Cycle):  # kept whole for the G-code backend (untransformed frames only)
                 last = add_offsets(c.holes[-1], nf)

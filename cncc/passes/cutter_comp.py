@@ -59,6 +59,11 @@ from cncc.passes.comp_geometry import (
 )
 
 Motion = Rapid | Linear | Arc
+_MOTIONS = (Rapid, Linear, Arc)
+
+
+def _off(f: Frame) -> bool:
+    return f.comp_side is CompSide.OFF and f.comp_radius_mm == 0.0
 
 
 @register
@@ -75,8 +80,28 @@ class CutterComp(Pass):
 
     def run(self, cmds: Iterable[Command], ctx: PassContext) -> Iterator[Command]:
         comp = _Comp(self, ctx)
+        # Fast path while compensation is off and nothing is pending: a motion in an
+        # uncompensated frame that starts where the previous one (passed through
+        # unchanged, same frame object) ended is passed through as is; ``comp.last`` is
+        # materialised when the fast path ends.
+        through: Motion | None = None
         for c in cmds:
+            if through is not None:
+                if c.frame is through.frame and isinstance(c, _MOTIONS) and c.start == through.end:
+                    through = c
+                    yield c
+                    continue
+                comp.last = add_offsets(through.end, through.frame)
+                through = None
+            if (comp.pending is None and comp.last is None and not comp.was_on and isinstance(c, _MOTIONS)
+                    and _off(c.frame)):
+                through = c
+                yield c
+                continue
             yield from comp.feed(c)
+            if (comp.pending is None and not comp.was_on and isinstance(c, _MOTIONS) and _off(c.frame)
+                    and comp.last is not None and comp.last == add_offsets(c.end, c.frame)):
+                through = c
         yield from comp.finish()
 
 
