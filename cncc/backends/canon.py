@@ -54,9 +54,15 @@ def _f(x: float) -> str:
     return "0.0000" if s == "-0.0000" else s
 
 
-def _pos(p: Vec6, frame: Frame) -> list[float]:
+_POS6 = "%.4f, %.4f, %.4f, %.4f, %.4f, %.4f"
+
+
+def _pos_text(p: Vec6, frame: Frame) -> str:
+    """The six coordinates as ``_f`` writes them, joined (one format call per move)."""
     k = frame.units.mm_per_unit
-    return [p[0] / k, p[1] / k, p[2] / k, p[3], p[4], p[5]]
+    s = _POS6 % (p[0] / k, p[1] / k, p[2] / k, p[3], p[4], p[5])
+    # '-' only starts a number, and every number has four decimals: a '-0.0000' is a whole one
+    return s.replace("-0.0000", "0.0000") if "-0.0000" in s else s
 
 
 def _offsets(frame: Frame) -> tuple[str, str]:
@@ -83,13 +89,17 @@ def canon_lines(cmds: Iterable[Command], *, initial_frame: Frame | None = None,
     yield PREFIX + "ON_RESET()"
     last_g5x, last_g92 = g5x, g92
     skip = 0  # commands folded into one call (RIGID_TAP, NURBS_FEED) that are not written
+    offsets: dict[int, tuple[Frame, tuple[str, str]]] = {}  # frames are shared: format once each
     for c in cmds:
         if skip:
             skip -= 1
             continue
         frame = c.frame
         if not isinstance(c, SetMode):
-            g5x, g92 = _offsets(frame)
+            entry = offsets.get(id(frame))
+            if entry is None or entry[0] is not frame:
+                entry = offsets[id(frame)] = (frame, _offsets(frame))
+            g5x, g92 = entry[1]
             if g5x != last_g5x:
                 yield PREFIX + g5x
                 last_g5x = g5x
@@ -98,9 +108,9 @@ def canon_lines(cmds: Iterable[Command], *, initial_frame: Frame | None = None,
                 last_g92 = g92
         match c:
             case Rapid():
-                yield PREFIX + "STRAIGHT_TRAVERSE(" + ", ".join(map(_f, _pos(c.end, frame))) + ")"
+                yield PREFIX + "STRAIGHT_TRAVERSE(" + _pos_text(c.end, frame) + ")"
             case Linear():
-                yield PREFIX + "STRAIGHT_FEED(" + ", ".join(map(_f, _pos(c.end, frame))) + ")"
+                yield PREFIX + "STRAIGHT_FEED(" + _pos_text(c.end, frame) + ")"
             case Arc():
                 yield PREFIX + _arc(c)
             case Dwell():
