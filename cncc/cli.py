@@ -285,7 +285,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         args = expand(args)
     except ArgfileError as exc:
         parser.error(str(exc))
-    ns = parser.parse_args(args)
+    ns = parser.parse_intermixed_args(args)  # options and files in any order, as gcc
     rep = Reporting()
     opts = build_options(ns, parser.error, rep)
     _deps_mode(ns, opts)
