@@ -78,6 +78,8 @@ class Result:
     sources: SourceMap
     output: str = ""
     deps: dict[str, list[str]] = field(default_factory=dict)  # input -> program files its calls loaded (-M)
+    runs: list[Any] = field(default_factory=list)  # --emit=timing: the planned columns (cncc.api reads them)
+    dialects: dict[str, str] = field(default_factory=dict)  # input -> the dialect it was read in
 
     @property
     def ok(self) -> bool:
@@ -448,6 +450,7 @@ def compile_files(opts: Options, stdin: TextIO | None = None) -> Result:
             if chosen is None:
                 continue
             dialect = chosen
+        result.dialects[src.name] = dialect.name
         deps = result.deps.setdefault(src.name, [])
         if opts.list_deps:  # -M: run the front end, list the subprogram files it loaded
             for _ in until_limit(front_end(src, dialect, machine, opts, sink, sources, deps), sink):
@@ -461,13 +464,14 @@ def compile_files(opts: Options, stdin: TextIO | None = None) -> Result:
             for _ in cmds:
                 pass
             continue
-        chunks.extend(run_backend(cmds, src, sources, dialect, machine, opts, sink))
+        chunks.extend(run_backend(cmds, src, sources, dialect, machine, opts, sink, keep_runs=result.runs))
     result.output = "".join(chunks)
     return result
 
 
 def run_backend(cmds: Iterator[Command], src: SourceFile, sources: SourceMap, dialect: Dialect,
-                machine: MachineModel, opts: Options, sink: DiagnosticSink) -> Iterator[str]:
+                machine: MachineModel, opts: Options, sink: DiagnosticSink,
+                keep_runs: list[Any] | None = None) -> Iterator[str]:
     frame0 = Frame(units=Units.INCH if dialect.default_units == "inch" else Units.MM)
     if opts.emit == "canon":
         from cncc.backends.canon import emit_canon
@@ -501,6 +505,8 @@ def run_backend(cmds: Iterator[Command], src: SourceFile, sources: SourceMap, di
 
         cmd_list = list(track_source(cmds, len(src.text), src.source_id))
         runs = timing_runs(cmd_list, machine, opts, sink)
+        if keep_runs is not None:
+            keep_runs.extend(runs)
         color = opts.output in (None, "-") and sys.stdout.isatty()
         return timing_report(cmd_list, runs, src, sources, dialect, opts.report_format, sink,
                              annotate=opts.annotate_time, color=color)
