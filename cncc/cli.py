@@ -7,7 +7,7 @@ import difflib
 import os
 import sys
 from collections.abc import Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Any
 
 from cncc import __version__
@@ -136,7 +136,6 @@ class Reporting:
     fmt: str = "text"
     color: str = "auto"
     max_errors: int = 0
-    given: set[str] = field(default_factory=set)
 
 
 def _code(text: str, opt: str, error: Any) -> str:
@@ -229,6 +228,8 @@ def build_options(ns: argparse.Namespace, error: Any, rep: Reporting | None = No
             opts.line_numbers = True
         elif flag == "no-verify":  # timing, pulses: skip the verify pass after plan
             opts.verify = False
+        elif "=" in flag and flag.partition("=")[0] in FLAGS:
+            error(f"-f{flag}: -f{flag.partition('=')[0]} is a cncc flag that takes no value")
         elif "=" in flag:  # a dialect option; the driver checks it against the dialect
             key, _, val = flag.partition("=")
             opts.dialect_options[key.replace("-", "_")] = _value(val)
@@ -345,12 +346,13 @@ def write_rules(result: Any, opts: Any, ns: argparse.Namespace) -> None:
     library = os.path.dirname(dialects.__file__)
     user_only = ns.list_deps_user or ns.write_deps_user
     text = ""
+    output = None if opts.list_deps else opts.output  # -M -o FILE: FILE is the rule's file, as for gcc
     for program, deps in result.deps.items():
         files = [d for d in deps if not (user_only and under(d, library))]
-        targets = ns.deps_targets or [default_target(program, opts.output, opts.emit)]
+        targets = ns.deps_targets or [default_target(program, output, opts.emit)]
         text += rule(targets, program, files, phony=ns.deps_phony)
     if opts.list_deps:
-        write_output(text, ns.deps_file, opts.inputs, result.sink)
+        write_output(text, ns.deps_file or opts.output, opts.inputs, result.sink)
         return
     if ns.deps_file:
         path = ns.deps_file
@@ -364,9 +366,12 @@ def write_rules(result: Any, opts: Any, ns: argparse.Namespace) -> None:
 def run(opts: Any, rep: Reporting | None = None, ns: argparse.Namespace | None = None) -> int:
     from cncc import diagnostics as dg
     from cncc.driver import compile_files, write_output, writes_own_output
+    from cncc.numwarn import recorded, to_diagnostics
 
     rep = rep if rep is not None else Reporting()
-    result = compile_files(opts)
+    with recorded() as caught:  # numpy's RuntimeWarnings become W0909 diagnostics, as in cncc.api
+        result = compile_files(opts)
+    to_diagnostics(caught, result.sink)
     to_stdout = opts.output in (None, "-")
     if opts.list_deps and ns is not None:
         write_rules(result, opts, ns)

@@ -235,6 +235,8 @@ def test_make_rules(tmp_path: Path) -> None:
     assert p.stdout == "out/part.nc: main.nc lib/O0020.nc\n\nlib/O0020.nc:\n"
     p = run(["-M", "-MFdeps.mk", "-I", "lib", "main.nc"], cwd=tmp_path)
     assert p.stdout == "" and (tmp_path / "deps.mk").read_text() == "main.canon: main.nc lib/O0020.nc\n"
+    p = run(["-M", "-o", "rule.mk", "-I", "lib", "main.nc"], cwd=tmp_path)  # gcc: -M -o names the rule's file
+    assert p.stdout == "" and (tmp_path / "rule.mk").read_text() == "main.canon: main.nc lib/O0020.nc\n"
     # -MD: compile as usual and write the rule beside the output (-o stem + .d)
     p = run(["-MD", "-I", "lib", "--emit=gcode", "-o", "flat.nc", "main.nc"], cwd=tmp_path)
     assert p.returncode == 0, p.stderr
@@ -281,6 +283,8 @@ def test_unknown_f_option_says_what_it_could_be() -> None:
     assert "did you mean -fmax-errors (a cncc flag)?" in p.stderr
     p = run(["-x", "syntec", "-frapid_typ=independent", "examples/contour.nc"])
     assert p.returncode == 2 and "did you mean -frapid_type (an option of dialect syntec)?" in p.stderr
+    p = run(["-fsyntax-only=yes", "examples/contour.nc"])
+    assert p.returncode == 2 and "-fsyntax-only is a cncc flag that takes no value" in p.stderr
     p = run(["-fsyntax-onyl", "examples/contour.nc"])
     assert p.returncode == 2 and "did you mean -fsyntax-only (a cncc flag)?" in p.stderr
 
