@@ -311,3 +311,26 @@ def test_a_missing_subprogram_is_skipped_and_the_next_call_checked(tmp_path: Pat
         assert "STRAIGHT_FEED(5.0000" in p.stdout and "STRAIGHT_FEED(5.0000, 7.0000" in p.stdout, dialect
         p = run(["-x", dialect, "-I", str(tmp_path), "-fmax-errors=1", "-"], stdin=text)
         assert len([h for h in first_lines(p.stderr) if "[E0310]" in h]) == 1
+
+
+class _Stream:
+    def __init__(self, tty: bool) -> None:
+        self.tty = tty
+
+    def isatty(self) -> bool:
+        return self.tty
+
+
+def test_palette_rules() -> None:
+    from cncc.colors import DEFAULT_SGR, palette
+
+    tty, pipe = _Stream(True), _Stream(False)
+    assert palette("auto", tty, {}).sgr == DEFAULT_SGR
+    assert palette("auto", pipe, {}).sgr == {}
+    assert palette("auto", tty, {"TERM": "dumb"}).sgr == {}
+    assert palette("auto", tty, {"NO_COLOR": "1"}).sgr == {}
+    assert palette("always", pipe, {"NO_COLOR": "1"}).sgr == DEFAULT_SGR  # the option beats the environment
+    assert palette("always", tty, {"GCC_COLORS": ""}).sgr == {}  # gcc: an empty GCC_COLORS turns colour off
+    assert palette("never", tty, {}).sgr == {}
+    got = palette("always", pipe, {"GCC_COLORS": "error=01;31", "CNCC_COLORS": "note=04:bogus=1:error=x"}).sgr
+    assert got["note"] == "04" and got["error"] == DEFAULT_SGR["error"]  # CNCC_COLORS first; bad entries ignored
