@@ -334,3 +334,13 @@ def test_palette_rules() -> None:
     assert palette("never", tty, {}).sgr == {}
     got = palette("always", pipe, {"GCC_COLORS": "error=01;31", "CNCC_COLORS": "note=04:bogus=1:error=x"}).sgr
     assert got["note"] == "04" and got["error"] == DEFAULT_SGR["error"]  # CNCC_COLORS first; bad entries ignored
+
+
+def test_a_call_without_a_program_is_skipped_too(tmp_path: Path) -> None:
+    (tmp_path / "O0002.nc").write_text("O0002\nG01 X5. F100.\nM99\n")
+    text = "G65 A1.\nM98\nM98 P2\nG01 Y7. F100.\nM30\n"  # G65 and M98 without P: nothing to call
+    for dialect in ("fanuc", "syntec", "szgh"):
+        p = run(["-x", dialect, "-I", str(tmp_path), "-"], stdin=text)
+        bad = [int(MATCHER.match(h).group(2)) for h in first_lines(p.stderr) if "[E0316]" in h]  # type: ignore
+        assert bad == [1, 2], (dialect, p.stderr)
+        assert "STRAIGHT_FEED(5.0000, 7.0000" in p.stdout, dialect  # the later call ran
