@@ -3,9 +3,11 @@
 from __future__ import annotations
 
 import argparse
+import difflib
 import os
 import sys
 from collections.abc import Sequence
+from dataclasses import dataclass
 from typing import Any
 
 from cncc import __version__
@@ -23,16 +25,19 @@ def _parser() -> argparse.ArgumentParser:
     p.add_argument("-x", "--dialect", help="input dialect (default: guessed from the file; -v says which)")
     p.add_argument("-v", "--verbose", action="store_true", help="notes on what was chosen (the guessed dialect)")
     p.add_argument("-t", "--target", help="target dialect for --emit=gcode (default: the input dialect)")
-    p.add_argument("-m", "--machine", default="generic-mill", help="machine model name or TOML file")
+    p.add_argument("-m", "--machine", help="machine model name or TOML file (default: generic-mill)")
     p.add_argument("--emit", default="canon", help="canon | ir | gcode | timing | pulses | none (default: canon)")
     p.add_argument("-o", dest="output", help="output file ('-' for standard output)")
-    p.add_argument("-O", dest="opt_level", type=int, choices=range(4), default=2, metavar="LEVEL",
+    p.add_argument("-O", dest="opt_level", type=int, choices=range(4), metavar="LEVEL",
                    help="planner level: -O0 nominal, -O1 trapezoid, -O2 jerk-limited (default), -O3 optimal")
     p.add_argument("-f", dest="flags", action="append", default=[], metavar="FLAG",
                    help="-fsyntax-only, -fstrict, -frepair-arcs, -fno-block-delete, -fline-numbers, -fno-verify, "
-                        "or a dialect option -fNAME=VALUE (e.g. -frapid_type=independent)")
+                        "-fdiagnostics-format=text|json|sarif, -fdiagnostics-color[=auto|always|never], "
+                        "-fmax-errors=N, or a dialect option -fNAME=VALUE (e.g. -frapid_type=independent)")
     p.add_argument("-W", dest="warnings", action="append", default=[], metavar="WARN",
-                   help="-Werror turns warnings into errors")
+                   help="-Werror (warnings are errors), -Werror=CODE, -Wno-CODE (not reported), -Wall "
+                        "(every warning; the default)")
+    p.add_argument("-w", dest="no_warnings", action="store_true", help="report no warnings")
     p.add_argument("--offsets", dest="offsets_file", help="work offsets table (TOML)")
     p.add_argument("--tools", dest="tools_file", help="tool table (TOML or LinuxCNC .tbl)")
     p.add_argument("--report-format", default="text", choices=["text", "json", "html"], help="timing report format")
@@ -60,7 +65,17 @@ def _parser() -> argparse.ArgumentParser:
     m.add_argument("-I", dest="include_dirs", action="append", default=[], metavar="DIR",
                    help="folder where called subprograms are found (repeatable, searched in order)")
     m.add_argument("-M", dest="list_deps", action="store_true",
-                   help="list the subprogram files the program calls, as 'program: file...'")
+                   help="print a make rule 'TARGET: program files-it-calls...' instead of compiling")
+    m.add_argument("-MM", dest="list_deps_user", action="store_true",
+                   help="as -M, without the dialect's own macro library (SZGH cycles)")
+    m.add_argument("-MD", dest="write_deps", action="store_true",
+                   help="compile, and write the make rule to the -MF file (default: TARGET's stem + .d)")
+    m.add_argument("-MMD", dest="write_deps_user", action="store_true", help="as -MD, without the dialect library")
+    m.add_argument("-MF", dest="deps_file", metavar="FILE", help="the file -M/-MD write the rule to")
+    m.add_argument("-MT", dest="deps_targets", action="append", default=[], metavar="TARGET",
+                   help="the rule's target (default: the -o file, else the input's stem + .EMIT)")
+    m.add_argument("-MP", dest="deps_phony", action="store_true",
+                   help="add an empty rule per called file (make then survives a deleted file)")
     m.add_argument("-E", dest="expand", action="store_true",
                    help="print the program flattened in its own dialect (macros, calls, loops and cycles "
                         "expanded; comments map blocks to source lines)")
@@ -114,16 +129,93 @@ def _macro_options(opts: Any, ns: argparse.Namespace, error: Any) -> None:
     opts.write_dir = ns.write_dir
 
 
-def build_options(ns: argparse.Namespace, error: Any) -> Any:
-    from cncc.driver import Options
+@dataclass(slots=True)
+class Reporting:
+    """How the diagnostics are shown: -fdiagnostics-format, -fdiagnostics-color, -fmax-errors."""
 
-    opts = Options(inputs=list(ns.inputs), dialect=ns.dialect, target=ns.target, machine=ns.machine,
-                   emit=ns.emit, output=ns.output, opt_level=ns.opt_level, offsets_file=ns.offsets_file,
+    fmt: str = "text"
+    color: str = "auto"
+    max_errors: int = 0
+
+
+def _code(text: str, opt: str, error: Any) -> str:
+    from cncc.diagnostics import CODES
+
+    code = text.upper()
+    if code not in CODES:
+        close = difflib.get_close_matches(code, list(CODES), n=3, cutoff=0.6)
+        error(f"{opt}: unknown diagnostic code {text!r}" + (f"; did you mean {' or '.join(close)}?" if close else
+                                                            " (see docs/diagnostics.md)"))
+    return code
+
+
+def _warning_options(ns: argparse.Namespace, rep: Reporting, error: Any) -> Any:
+    """-w, -Wall, -Werror, -Werror=CODE, -Wno-CODE, -fmax-errors -> the sink's WarningPolicy."""
+    from cncc.diagnostics import CODES, Severity, WarningPolicy
+
+    werror, disabled, as_errors = False, set(), set()
+    for w in ns.warnings:
+        if w == "error":
+            werror = True
+        elif w in ("all", "extra"):
+            pass  # every cncc warning is on unless -w or -Wno-CODE turns it off
+        elif w.startswith("error="):
+            as_errors.add(_code(w[6:], f"-W{w}", error))
+        elif w.startswith("no-"):
+            code = _code(w[3:], f"-W{w}", error)
+            if CODES[code].severity is Severity.ERROR:
+                error(f"-W{w}: {code} is an error; only warnings and notes can be turned off")
+            disabled.add(code)
+        else:
+            close = difflib.get_close_matches(w, ["error", "all", "extra"], n=1)
+            error(f"unknown warning option -W{w}" + (f"; did you mean -W{close[0]}?" if close else ""))
+    return werror, WarningPolicy(disabled=frozenset(disabled), as_errors=frozenset(as_errors),
+                                 no_warnings=ns.no_warnings, max_errors=rep.max_errors)
+
+
+def _reporting_flag(flag: str, rep: Reporting, error: Any) -> bool:
+    """-fdiagnostics-format=, -fdiagnostics-color[=], -fno-diagnostics-color, -fmax-errors= (True if one)."""
+    from cncc.colors import CHOICES
+    from cncc.diagout import FORMATS
+
+    key, sep, val = flag.partition("=")
+    if key == "diagnostics-format":
+        if val not in FORMATS:
+            error(f"-f{flag}: expected one of {', '.join(FORMATS)}")
+        rep.fmt = val
+    elif key == "diagnostics-color" or flag == "no-diagnostics-color":
+        val = "never" if flag == "no-diagnostics-color" else (val if sep else "always")
+        if val not in CHOICES:
+            error(f"-f{flag}: expected one of {', '.join(CHOICES)}")
+        rep.color = val
+    elif key == "max-errors":
+        if not val.isdigit():
+            error(f"-f{flag}: expected a number of errors (0: no limit)")
+        rep.max_errors = int(val)
+    else:
+        return False
+    return True
+
+
+def build_options(ns: argparse.Namespace, error: Any, rep: Reporting | None = None) -> Any:
+    from cncc.driver import DEFAULT_MACHINE, Options
+    from cncc.flags import FLAGS, suggest
+
+    rep = rep if rep is not None else Reporting()
+    given = {f for f, v in (("dialect", ns.dialect), ("target", ns.target), ("machine", ns.machine),
+                             ("offsets_file", ns.offsets_file), ("tools_file", ns.tools_file),
+                             ("opt_level", ns.opt_level)) if v is not None}
+    opts = Options(inputs=list(ns.inputs), dialect=ns.dialect, target=ns.target,
+                   machine=ns.machine or DEFAULT_MACHINE, emit=ns.emit, output=ns.output,
+                   opt_level=2 if ns.opt_level is None else ns.opt_level, offsets_file=ns.offsets_file,
                    tools_file=ns.tools_file, report_format=ns.report_format,
                    compare=ns.compare, annotate_time=ns.annotate_time,
                    pulse_format=ns.pulse_format, pulse_mode=ns.pulse_mode)
     opts.verbose = ns.verbose
+    opts.project_config = True
     for flag in ns.flags:
+        if _reporting_flag(flag, rep, error):
+            continue
         if flag == "syntax-only":
             opts.syntax_only = True
         elif flag == "strict":
@@ -136,11 +228,15 @@ def build_options(ns: argparse.Namespace, error: Any) -> Any:
             opts.line_numbers = True
         elif flag == "no-verify":  # timing, pulses: skip the verify pass after plan
             opts.verify = False
-        elif "=" in flag:
+        elif "=" in flag and flag.partition("=")[0] in FLAGS:
+            error(f"-f{flag}: -f{flag.partition('=')[0]} is a cncc flag that takes no value")
+        elif "=" in flag:  # a dialect option; the driver checks it against the dialect
             key, _, val = flag.partition("=")
             opts.dialect_options[key.replace("-", "_")] = _value(val)
+            given.add("dialect_options")
         else:
-            error(f"unknown flag -f{flag}")
+            error(f"unknown flag -f{flag}" + (suggest(flag, (), "") if flag not in FLAGS else
+                                              f" (-f{flag} takes a value: -f{flag}=VALUE)"))
     _macro_options(opts, ns, error)
     opts.units, opts.keep_subprograms = ns.units, ns.keep_subprograms
     for item in ns.target_option:
@@ -149,25 +245,56 @@ def build_options(ns: argparse.Namespace, error: Any) -> Any:
             error(f"--target-option {item}: expected NAME=VALUE")
         opts.target_options[key.replace("-", "_")] = _value(val)
     opts.decimals_mm, opts.decimals_inch = ns.decimals_mm, ns.decimals_inch
-    for w in ns.warnings:
-        if w == "error":
-            opts.werror = True
-        else:
-            error(f"unknown warning option -W{w}")
+    opts.werror, opts.policy = _warning_options(ns, rep, error)
+    opts.given = frozenset(given)
+    _check_choices(opts, error)
     return opts
 
 
+def _check_choices(opts: Any, error: Any) -> None:
+    """-x and --emit name things the command line knows: a bad value is a usage error (exit 2)."""
+    from cncc.dialects import available
+    from cncc.driver import EMIT_KINDS
+
+    for what, value, known in (("-x", opts.dialect, available()), ("-t", opts.target, available())):
+        if value is None or value in known or (value.endswith(".toml") and os.path.isfile(value)):
+            continue
+        close = difflib.get_close_matches(value, known, n=1)
+        error(f"{what} {value}: unknown dialect (choose from {', '.join(known)}, or a dialect .toml file)"
+              + (f"; did you mean {close[0]}?" if close else ""))
+    if opts.emit not in EMIT_KINDS:
+        close = difflib.get_close_matches(opts.emit, EMIT_KINDS, n=1)
+        error(f"--emit={opts.emit}: choose from {', '.join(EMIT_KINDS)}" + (f"; did you mean {close[0]}?"
+                                                                             if close else ""))
+
+
+def _deps_mode(ns: argparse.Namespace, opts: Any) -> None:
+    if ns.list_deps or ns.list_deps_user:
+        opts.list_deps = True
+
+
 def main(argv: Sequence[str] | None = None) -> int:
+    from cncc.argfiles import ArgfileError, expand
+
     args = list(sys.argv[1:] if argv is None else argv)
     if args[:1] == ["lsp"]:
         from cncc.lsp import serve
 
         return serve(args[1:])
     parser = _parser()
-    ns = parser.parse_args(args)
-    opts = build_options(ns, parser.error)
     try:
-        return run(opts)
+        args = expand(args)
+    except ArgfileError as exc:
+        parser.error(str(exc))
+    ns = parser.parse_intermixed_args(args)  # options and files in any order, as gcc
+    rep = Reporting()
+    opts = build_options(ns, parser.error, rep)
+    _deps_mode(ns, opts)
+    if not opts.inputs and sys.stdin.isatty():  # gcc: no file and nothing piped in
+        sys.stderr.write("cncc: fatal error: no input files\ncompilation terminated.\n")
+        return 2
+    try:
+        return run(opts, rep, ns)
     except KeyboardInterrupt:
         return 130
     except Exception as exc:  # an internal error is a bug: say so without a traceback
@@ -178,24 +305,84 @@ def main(argv: Sequence[str] | None = None) -> int:
         return 4
 
 
-def run(opts: Any) -> int:
-    from cncc.driver import compile_files, write_output, writes_own_output
+def report(result: Any, rep: Reporting, stream: Any = None) -> None:
+    """The diagnostics of ``result`` on ``stream`` (stderr) in the chosen format, sorted by position."""
+    from cncc.render import by_position
+
+    err = stream if stream is not None else sys.stderr
+    diags = by_position(result.sink)
+    if rep.fmt == "json":
+        from cncc.diagout.jsonout import render_json
+
+        err.write(render_json(diags, result.sources))
+        return
+    if rep.fmt == "sarif":
+        from cncc.diagout.sarif import render_sarif
+
+        err.write(render_sarif(diags, result.sources))
+        return
+    from cncc.colors import palette
     from cncc.render import render
 
-    result = compile_files(opts)
-    to_stdout = opts.output in (None, "-")
-    if not opts.syntax_only and not writes_own_output(opts) and (
-            not result.sink.has_errors or (result.output and to_stdout)):
-        write_output(result.output, opts.output, opts.inputs, result.sink)
-    err = sys.stderr
-    for d in result.sink:
-        for chunk in render(d, result.sources):
+    pal = palette(rep.color, err)
+    for d in diags:
+        for chunk in render(d, result.sources, pal):
             err.write(chunk)
     if result.sink.dropped:
         err.write(f"cncc: {result.sink.dropped} more diagnostics not shown\n")
+    if result.sink.over_limit or result.sink.limit_reached:
+        err.write(f"compilation terminated due to -fmax-errors={rep.max_errors}.\n")
     n_err = result.sink.error_count
     if n_err:
         err.write(f"{n_err} error{'s' if n_err != 1 else ''} generated.\n")
+
+
+def write_rules(result: Any, opts: Any, ns: argparse.Namespace) -> None:
+    """-M/-MM (instead of the output) and -MD/-MMD (beside it): the make rules of the inputs."""
+    from cncc import dialects
+    from cncc.driver import write_output
+    from cncc.makedeps import default_target, rule, under
+
+    library = os.path.dirname(dialects.__file__)
+    user_only = ns.list_deps_user or ns.write_deps_user
+    text = ""
+    output = None if opts.list_deps else opts.output  # -M -o FILE: FILE is the rule's file, as for gcc
+    for program, deps in result.deps.items():
+        files = [d for d in deps if not (user_only and under(d, library))]
+        targets = ns.deps_targets or [default_target(program, output, opts.emit)]
+        text += rule(targets, program, files, phony=ns.deps_phony)
+    if opts.list_deps:
+        write_output(text, ns.deps_file or opts.output, opts.inputs, result.sink)
+        return
+    if ns.deps_file:
+        path = ns.deps_file
+    else:
+        first = ns.deps_targets[0] if ns.deps_targets else default_target(
+            opts.inputs[0] if opts.inputs else "stdin", opts.output, opts.emit)
+        path = os.path.splitext(first)[0] + ".d"
+    write_output(text, path, opts.inputs, result.sink)
+
+
+def run(opts: Any, rep: Reporting | None = None, ns: argparse.Namespace | None = None) -> int:
+    from cncc import diagnostics as dg
+    from cncc.driver import compile_files, write_output, writes_own_output
+    from cncc.numwarn import recorded, to_diagnostics
+
+    rep = rep if rep is not None else Reporting()
+    with recorded() as caught:  # numpy's RuntimeWarnings become W0909 diagnostics, as in cncc.api
+        result = compile_files(opts)
+    to_diagnostics(caught, result.sink)
+    to_stdout = opts.output in (None, "-")
+    if opts.list_deps and ns is not None:
+        write_rules(result, opts, ns)
+    elif not opts.syntax_only and not writes_own_output(opts) and (
+            not result.sink.has_errors or (result.output and to_stdout)):
+        write_output(result.output, opts.output, opts.inputs, result.sink)
+    if ns is not None and (ns.write_deps or ns.write_deps_user) and not opts.list_deps:
+        write_rules(result, opts, ns)
+    report(result, rep)
+    if any(d.code == dg.BAD_OPTION for d in result.sink):
+        return 2  # a bad option value (a machine, -f dialect option, --compare ...) is a usage error
     return 1 if result.sink.has_errors else 0
 
 

@@ -227,6 +227,9 @@ BAD_OFFSETS_FILE = _define("E0903", E, "an offsets or tools file is malformed")
 BAD_OPTION = _define("E0904", E, "a command-line option has a bad value")
 WERROR = _define("E0905", E, "a warning turned into an error by -Werror")
 OUTPUT_IS_INPUT = _define("E0906", E, "the output file would overwrite an input file")
+SETTING_ORIGIN = _define("N0907", N, "-v: where a setting came from (command line, modeline, cncc.toml, default)")
+BAD_PROJECT_CONFIG = _define("E0908", E, "a cncc.toml project file is malformed")
+NUMPY_WARNING = _define("W0909", W, "a numerical warning (overflow, invalid value) raised while computing")
 
 
 @dataclass(frozen=True, slots=True)
@@ -244,14 +247,29 @@ class Diagnostic:
     related: tuple[Related, ...] = ()
 
 
+@dataclass(frozen=True, slots=True)
+class WarningPolicy:
+    """What the command line's -w, -Wno-CODE, -Werror=CODE and -fmax-errors=N ask of a sink."""
+
+    disabled: frozenset[str] = frozenset()  # -Wno-CODE: not reported
+    as_errors: frozenset[str] = frozenset()  # -Werror=CODE: reported as errors
+    no_warnings: bool = False  # -w: no warnings reported
+    max_errors: int = 0  # -fmax-errors=N: errors after the N-th are dropped (0: no limit)
+
+
 class DiagnosticSink:
     """Collects diagnostics from every stage; never raises."""
 
-    def __init__(self, *, werror: bool = False, max_count: int = 10_000) -> None:
+    def __init__(self, *, werror: bool = False, max_count: int = 10_000,
+                 policy: WarningPolicy | None = None) -> None:
         self.items: list[Diagnostic] = []
         self.werror = werror
         self.max_count = max_count
         self.dropped = 0
+        self.policy = policy or WarningPolicy()
+        self.suppressed = 0  # diagnostics -w / -Wno-CODE kept quiet
+        self.errors_kept = 0
+        self.over_limit = 0  # errors dropped past -fmax-errors
 
     def emit(
         self,
@@ -264,12 +282,26 @@ class DiagnosticSink:
         if severity is None:
             info = CODES.get(code)
             severity = info.severity if info is not None else Severity.ERROR
-        if self.werror and severity is Severity.WARNING:
+        pol = self.policy
+        if code in pol.disabled or (pol.no_warnings and severity is Severity.WARNING):
+            self.suppressed += 1
+            return
+        if (self.werror and severity is Severity.WARNING) or code in pol.as_errors:
             severity = Severity.ERROR
+        if severity is Severity.ERROR and pol.max_errors and self.errors_kept >= pol.max_errors:
+            self.over_limit += 1
+            return
         if len(self.items) >= self.max_count:
             self.dropped += 1
             return
+        if severity is Severity.ERROR:
+            self.errors_kept += 1
         self.items.append(Diagnostic(code, severity, span, message, related))
+
+    @property
+    def limit_reached(self) -> bool:
+        """-fmax-errors=N: N errors were reported (the run may stop here)."""
+        return bool(self.policy.max_errors) and self.errors_kept >= self.policy.max_errors
 
     def __iter__(self) -> Iterator[Diagnostic]:
         return iter(self.items)

@@ -15,7 +15,7 @@ from dataclasses import dataclass, field
 from typing import IO, Any, TextIO
 
 from cncc import diagnostics as dg
-from cncc.diagnostics import DiagnosticSink
+from cncc.diagnostics import DiagnosticSink, WarningPolicy
 from cncc.dialects import Dialect, DialectError, load_dialect
 from cncc.ir import Command, Frame, Units, Vec6
 from cncc.ir.machine import Axis, MachineModel
@@ -66,6 +66,10 @@ class Options:
     pulse_format: str = "vcd"  # --emit=pulses: vcd | csv | npz | queue
     pulse_mode: str = "exact"  # --emit=pulses: exact | interp (SZGH 2 ms interpolation)
     verify: bool = True  # -fno-verify: skip the verify pass after plan (timing, pulses)
+    # the command line (cncc/cli.py): project configuration and what the diagnostics options ask
+    project_config: bool = False  # read cncc.toml and the modeline per input (cncc/config.py)
+    given: frozenset[str] = frozenset()  # fields set on the command line (they beat cncc.toml and the modeline)
+    policy: WarningPolicy = field(default_factory=WarningPolicy)  # -w, -Wno-CODE, -Werror=CODE, -fmax-errors
 
 
 @dataclass(slots=True)
@@ -73,6 +77,9 @@ class Result:
     sink: DiagnosticSink
     sources: SourceMap
     output: str = ""
+    deps: dict[str, list[str]] = field(default_factory=dict)  # input -> program files its calls loaded (-M)
+    runs: list[Any] = field(default_factory=list)  # --emit=timing: the planned columns (cncc.api reads them)
+    dialects: dict[str, str] = field(default_factory=dict)  # input -> the dialect it was read in
 
     @property
     def ok(self) -> bool:
@@ -106,13 +113,33 @@ def read_input(path: str, sources: SourceMap, sink: DiagnosticSink, stdin: TextI
 def resolve_dialect(opts: Options, sink: DiagnosticSink) -> Dialect | None:
     name = opts.dialect or DEFAULT_DIALECT
     try:
-        dialect = load_dialect(name)
+        dialect = dialect_file(name) if name.endswith(".toml") else load_dialect(name)
+        unknown = [k for k in opts.dialect_options if k not in dialect.options]
+        if unknown:
+            from cncc.flags import unknown_option
+
+            sink.emit(dg.BAD_OPTION, NO_SPAN, unknown_option(unknown[0], opts.dialect_options[unknown[0]],
+                                                             dialect.options, dialect.name))
+            return None
         if opts.dialect_options:
             dialect = dialect.with_options(opts.dialect_options)
     except DialectError as exc:
         sink.emit(dg.BAD_OPTION, NO_SPAN, str(exc))
         return None
     return dialect
+
+
+def dialect_file(path: str) -> Dialect:
+    """A dialect TOML file (a dialect of one's own, as the language server also reads)."""
+    import tomllib
+
+    from cncc.dialects import parse_dialect
+
+    try:
+        with open(path, "rb") as fh:
+            return parse_dialect(tomllib.load(fh))
+    except (OSError, tomllib.TOMLDecodeError) as exc:
+        raise DialectError(f"{path}: {exc}") from None
 
 
 def resolve_machine(name: str, sink: DiagnosticSink) -> MachineModel | None:
@@ -338,47 +365,113 @@ def guessed_dialect(src: SourceFile, opts: Options, sink: DiagnosticSink) -> Dia
     return resolve_dialect(Options(dialect=name, dialect_options=opts.dialect_options), sink)
 
 
+# options -> cncc.toml keys (cncc/config.py)
+CONFIG_FIELDS = {"dialect": "dialect", "target": "target", "machine": "machine", "offsets": "offsets_file",
+                 "tools": "tools_file", "opt_level": "opt_level", "options": "dialect_options"}
+
+
+def file_options(opts: Options, path: str, src: SourceFile, sink: DiagnosticSink) -> Options:
+    """The options of one input: ``cncc.toml`` upward from it, its modeline, then the command line."""
+    from dataclasses import replace
+
+    from cncc import config
+
+    if not opts.project_config:
+        return opts
+    given = {key: getattr(opts, f) for key, f in CONFIG_FIELDS.items() if f in opts.given}
+    res = config.resolve(None if path == "-" else path, src.text, given)
+    for problem in res.errors:
+        sink.emit(dg.BAD_PROJECT_CONFIG, NO_SPAN, problem)
+    fopts = replace(opts, **{CONFIG_FIELDS[k]: v for k, v in res.values.items()})
+    if opts.verbose:
+        at = Span(src.source_id, 0, 0)
+        for key, f in CONFIG_FIELDS.items():
+            value = getattr(fopts, f)
+            if key == "options":
+                for name, v in value.items():
+                    sink.emit(dg.SETTING_ORIGIN, at, f"-f{name}={v} from {res.origins.get('options.' + name, '?')}")
+            elif key in res.origins:
+                sink.emit(dg.SETTING_ORIGIN, at, f"{key} {value} from {res.origins[key]}")
+            elif value is not None and key != "dialect":  # an unset dialect is guessed (N0251 says how)
+                sink.emit(dg.SETTING_ORIGIN, at, f"{key} {value} (default)")
+        if res.config_path is None:
+            sink.emit(dg.SETTING_ORIGIN, at, f"no {config.CONFIG_NAME} at or above the input's folder")
+    return fopts
+
+
+def until_limit(cmds: Iterable[Command], sink: DiagnosticSink) -> Iterator[Command]:
+    """-fmax-errors=N: stop the program once N errors were reported."""
+    for cmd in cmds:
+        yield cmd
+        if sink.limit_reached:
+            return
+
+
+def new_sink(opts: Options) -> DiagnosticSink:
+    return DiagnosticSink(werror=opts.werror, policy=opts.policy)
+
+
 def compile_files(opts: Options, stdin: TextIO | None = None) -> Result:
-    sink = DiagnosticSink(werror=opts.werror)
+    sink = new_sink(opts)
     sources = SourceMap()
     result = Result(sink, sources)
     if opts.emit not in EMIT_KINDS:
         sink.emit(dg.BAD_OPTION, NO_SPAN, f"unknown --emit={opts.emit} (choose from {', '.join(EMIT_KINDS)})")
         return result
-    dialect = resolve_dialect(opts, sink)
+    # a guessed dialect gets the -f options once it is known (the default need not have them)
+    dialect = resolve_dialect(opts if opts.dialect else Options(), sink)
     machine = resolve_machine(opts.machine, sink)
     if dialect is None or machine is None:
         return result
     machine = apply_dialect_to_machine(machine, opts, sink)
     chunks: list[str] = []
-    for path in opts.inputs or ["-"]:
+    base_dialect, base_machine, base_opts = dialect, machine, opts
+    for path in base_opts.inputs or ["-"]:
+        if sink.limit_reached:
+            break
         src = read_input(path, sources, sink, stdin)
         if src is None:
             continue
+        opts, dialect, machine = file_options(base_opts, path, src, sink), base_dialect, base_machine
+        if opts.machine != base_opts.machine or opts.dialect_options != base_opts.dialect_options:
+            model = resolve_machine(opts.machine, sink)
+            if model is None:
+                continue
+            machine = apply_dialect_to_machine(model, opts, sink)
         if not src.text.strip():
             sink.emit(dg.EMPTY_PROGRAM, Span(src.source_id, 0, 0), "the program contains no blocks")
         if opts.dialect is None:  # no -x: guess from the name and contents (reported with -v)
-            dialect = guessed_dialect(src, opts, sink) or dialect
+            guessed = guessed_dialect(src, opts, sink)
+            if guessed is None:  # the -f options do not fit the guessed dialect (reported)
+                continue
+            dialect = guessed
+        elif opts.dialect != base_opts.dialect or opts.dialect_options != base_opts.dialect_options:
+            chosen = resolve_dialect(opts, sink)
+            if chosen is None:
+                continue
+            dialect = chosen
+        result.dialects[src.name] = dialect.name
+        deps = result.deps.setdefault(src.name, [])
         if opts.list_deps:  # -M: run the front end, list the subprogram files it loaded
-            deps: list[str] = []
-            for _ in front_end(src, dialect, machine, opts, sink, sources, deps):
+            for _ in until_limit(front_end(src, dialect, machine, opts, sink, sources, deps), sink):
                 pass
-            chunks.append(f"{src.name}: {' '.join(dict.fromkeys(deps))}".rstrip() + "\n")
             continue
-        cmds = path_passes(front_end(src, dialect, machine, opts, sink, sources), dialect, machine, opts, sink)
+        cmds = path_passes(until_limit(front_end(src, dialect, machine, opts, sink, sources, deps), sink),
+                           dialect, machine, opts, sink)
         if opts.expand:
             cmds = with_line_map(cmds, sources)
         if opts.syntax_only:
             for _ in cmds:
                 pass
             continue
-        chunks.extend(run_backend(cmds, src, sources, dialect, machine, opts, sink))
+        chunks.extend(run_backend(cmds, src, sources, dialect, machine, opts, sink, keep_runs=result.runs))
     result.output = "".join(chunks)
     return result
 
 
 def run_backend(cmds: Iterator[Command], src: SourceFile, sources: SourceMap, dialect: Dialect,
-                machine: MachineModel, opts: Options, sink: DiagnosticSink) -> Iterator[str]:
+                machine: MachineModel, opts: Options, sink: DiagnosticSink,
+                keep_runs: list[Any] | None = None) -> Iterator[str]:
     frame0 = Frame(units=Units.INCH if dialect.default_units == "inch" else Units.MM)
     if opts.emit == "canon":
         from cncc.backends.canon import emit_canon
@@ -412,6 +505,8 @@ def run_backend(cmds: Iterator[Command], src: SourceFile, sources: SourceMap, di
 
         cmd_list = list(track_source(cmds, len(src.text), src.source_id))
         runs = timing_runs(cmd_list, machine, opts, sink)
+        if keep_runs is not None:
+            keep_runs.extend(runs)
         color = opts.output in (None, "-") and sys.stdout.isatty()
         return timing_report(cmd_list, runs, src, sources, dialect, opts.report_format, sink,
                              annotate=opts.annotate_time, color=color)

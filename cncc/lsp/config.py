@@ -17,9 +17,10 @@ import tomllib
 from dataclasses import dataclass, field, fields, replace
 from typing import Any
 
+from cncc.config import CONFIG_NAME, find_config, modeline, read_config
 from cncc.dialects import Dialect, DialectError, available, load_dialect, parse_dialect
 
-CONFIG_NAME = "cncc.toml"
+__all__ = ["CONFIG_NAME", "Settings", "find_config", "guess_dialect", "open_dialect", "read_config"]
 DEFAULT_DIALECT = "syntec"
 
 
@@ -81,31 +82,7 @@ def _coerce(key: str, value: Any, current: Any) -> Any:
     return str(value)
 
 
-def find_config(folder: str, stop_at: str | None = None) -> str | None:
-    """The nearest ``cncc.toml`` at or above ``folder`` (not above ``stop_at``)."""
-    folder = os.path.abspath(folder)
-    stop = os.path.abspath(stop_at) if stop_at else None
-    while True:
-        candidate = os.path.join(folder, CONFIG_NAME)
-        if os.path.isfile(candidate):
-            return candidate
-        parent = os.path.dirname(folder)
-        if parent == folder or (stop is not None and folder == stop):
-            return None
-        folder = parent
-
-
-def read_config(path: str) -> tuple[dict[str, Any], str | None]:
-    """The table in ``path`` and an error message (empty table when unreadable)."""
-    try:
-        with open(path, "rb") as fh:
-            return tomllib.load(fh), None
-    except (OSError, tomllib.TOMLDecodeError) as exc:
-        return {}, f"{path}: {exc}"
-
-
 # ---- dialects --------------------------------------------------------------------
-_MODELINE_RE = re.compile(r"cncc\s*:\s*dialect\s*=\s*([\w./-]+)", re.IGNORECASE)
 # Marks the command line's detection (cncc/frontend/detect.py) does not look for.
 _CONTENT_HINTS: tuple[tuple[str, re.Pattern[str]], ...] = (
     ("szgh", re.compile(r"^\s*(?:N\d+\s*)?(?:WAT\b|FILEON|PP[A-Z]|M98\s*P[A-Za-z])", re.MULTILINE)),
@@ -120,9 +97,9 @@ def guess_dialect(path: str, text: str, configured: str | None) -> str:
     from cncc.frontend.detect import guess_dialect as detect
 
     known = available()
-    m = _MODELINE_RE.search(text[:2000])
-    if m is not None:
-        return m.group(1)
+    mode = modeline(text)  # the project resolver's modeline (cncc/config.py), as the command line reads it
+    if mode is not None:
+        return mode[0]
     if configured:
         return configured
     sample = text[:200_000]

@@ -23,7 +23,9 @@ TABLES = {"tools_file": str(DATA / "tools.toml"), "offsets_file": str(DATA / "of
 
 def corpus() -> list[tuple[str, Path]]:
     out = [(d.name, p) for d in sorted((DATA / "corpus").iterdir()) if d.is_dir() for p in sorted(d.glob("*.nc"))]
-    out += [("syntec", p) for p in sorted((ROOT / "examples").glob("*.nc"))]
+    for p in sorted((ROOT / "examples").glob("*.nc")):  # examples/DIALECT_name.nc; contour.nc is SYNTEC
+        prefix = p.stem.split("_")[0]
+        out.append((prefix if prefix in available() else "syntec", p))
     return out
 
 

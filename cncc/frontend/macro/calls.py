@@ -126,7 +126,8 @@ def _count(ex: Executor, words: tuple[Word, ...], span: Span) -> int | None:
         return 1
     n = int(lw.value)
     if n != lw.value or n < 0 or n > 99999:
-        ex.fail(dg.MACRO_BAD_CALL, span, f"L{lw.value:g}: the repeat count must be a whole number 0 to 99999")
+        ex.emit(dg.MACRO_BAD_CALL, span,
+                f"L{lw.value:g}: the repeat count must be a whole number 0 to 99999; the call is skipped")
         return None
     return n
 
@@ -203,14 +204,15 @@ def _subprogram_call(ex: Executor, fr: CallFrame, words: tuple[Word, ...], names
     h = _word(words, "H")
     p = _word(words, "P")
     if prog is None and not names and p is not None:
-        ex.fail(dg.MACRO_BAD_CALL, span, f"P{p.value:g} is not a program number")
+        ex.emit(dg.MACRO_BAD_CALL, span, f"P{p.value:g} is not a program number; the call is skipped")
         return
     if prog is not None and ex.flavour == "fanuc" and _word(words, "L") is None and prog[0].isdigit() \
             and int(prog[0]) > 9999:
         repeats, number = divmod(int(prog[0]), 10000)  # Fanuc: M98 P50010 = five calls of O0010
         prog = (str(number), f"O{number:04d}")
     if prog is None and h is None:
-        ex.fail(dg.MACRO_BAD_CALL, span, "M98 needs P (the program) or H (a sequence number of this program)")
+        ex.emit(dg.MACRO_BAD_CALL, span,
+                "M98 needs P (the program) or H (a sequence number of this program); the call is skipped")
         return
     if prog is not None:
         found = ex.find_program(fr, prog[0], prog[1], span)
@@ -239,7 +241,7 @@ def _macro_call(ex: Executor, fr: CallFrame, words: tuple[Word, ...], by_op: dic
         trigger = by_op["macro_call"][0]
         prog = _program(ex, words, names)
         if prog is None:
-            ex.fail(dg.MACRO_BAD_CALL, span, "G65 needs P, the macro program to call")
+            ex.emit(dg.MACRO_BAD_CALL, span, "G65 needs P, the macro program to call; the call is skipped")
             return
     else:
         kind = "user"
@@ -263,7 +265,7 @@ def _modal_setup(ex: Executor, fr: CallFrame, words: tuple[Word, ...], names: li
     if repeats is None:
         return
     if prog is None:
-        ex.fail(dg.MACRO_BAD_CALL, span, "G66 needs P, the macro program to call")
+        ex.emit(dg.MACRO_BAD_CALL, span, "G66 needs P, the macro program to call; the call is skipped")
         return
     found = ex.find_program(fr, prog[0], prog[1], span)
     if found is None:

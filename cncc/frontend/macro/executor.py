@@ -384,11 +384,11 @@ class Executor:
 
     def find_program(self, fr: CallFrame, key: str, text: str, span: Span) -> tuple[Unit, int] | None:
         found = self.library.find(key, fr.unit, text)
-        if found is None:
+        if found is None:  # reported and skipped: the run goes on, so later calls are checked too
             where = ", ".join(self.opts.include_dirs) or "no -I folder given"
-            self.fail(dg.MACRO_NO_PROGRAM, span,
+            self.emit(dg.MACRO_NO_PROGRAM, span,
                       f"program {text or key} is neither an O section of this file nor a file in the -I "
-                      f"folders ({where})")
+                      f"folders ({where}); the call is skipped")
         return found
 
 

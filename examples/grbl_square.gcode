@@ -1,0 +1,15 @@
+; grbl: a 40 mm square with rounded corners, laser style
+G21 G90 G17
+G0 X5 Y0
+M3 S1000
+G1 X35 Y0 F800
+G3 X40 Y5 I0 J5
+G1 X40 Y35
+G3 X35 Y40 I-5 J0
+G1 X5 Y40
+G3 X0 Y35 I0 J-5
+G1 X0 Y5
+G3 X5 Y0 I5 J0
+M5
+G0 X0 Y0
+M2
