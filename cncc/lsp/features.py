@@ -225,8 +225,9 @@ async def _code_actions(ls: CnccServer, params: lsp.CodeActionParams) -> list[ls
     for d in params.context.diagnostics:
         start = convert.offset(index, d.range.start)
         if d.code in (dg.NO_FEED, dg.DEFAULT_FEED):
-            title, edits = actions.insert_feed(index, dialect, start)
-            out.append(_action(title, lsp.CodeActionKind.QuickFix, uri, index, edits, d))
+            feed = actions.insert_feed(index, dialect, start)
+            if feed is not None:
+                out.append(_action(feed[0], lsp.CodeActionKind.QuickFix, uri, index, feed[1], d))
         elif d.code == dg.ARC_RADIUS:
             req = Request(uri, ls.doc_path(uri), None, text, dialect_name, settings, repair_arcs=True,
                           stop_after=index.line_end(index.line_of(start)))
@@ -241,6 +242,14 @@ async def _code_actions(ls: CnccServer, params: lsp.CodeActionParams) -> list[ls
             last = rng.end.line if rng.end.character > 0 or rng.end.line == rng.start.line else rng.end.line - 1
             targets = [settings.target] if settings.target else []
             targets += [n for n in available() if n != dialect.name and n not in targets]
+            errors = [(d.span.start, d.message) for d in cur.diagnostics
+                      if d.severity is dg.Severity.ERROR and d.span.source_id == 0]
+            why = actions.refusal(errors, index.line_start(rng.start.line), index.line_end(last))
+            if why is not None:  # refused, with the reason (clients show it greyed out)
+                out.append(lsp.CodeAction(title="Convert selection to another dialect",
+                                          kind=lsp.CodeActionKind.RefactorRewrite,
+                                          disabled=lsp.CodeActionDisabled(reason=why)))
+                targets = []
             for name in targets:
                 try:
                     target = open_dialect(name, settings)
