@@ -16,8 +16,9 @@ from cncc.lsp.analysis import Request, analyze, new_analysis
 from cncc.lsp.complete import complete
 from cncc.lsp.config import open_dialect
 from cncc.lsp.hover import word_hover
-from cncc.lsp.navigate import Outline, Ref, outline, program_key
-from cncc.lsp.scan import Comments, token_at
+from cncc.lsp.navigate import Outline, Ref, oword_key, outline, program_key
+from cncc.lsp.scan import Comments, token_at, tokens
+from cncc.lsp.subs import named_hover, sub_hover
 from cncc.lsp.server import CnccServer
 from cncc.lsp.variables import hover_variable
 
@@ -78,7 +79,16 @@ def register(ls: CnccServer) -> None:  # noqa: C901 - one closure per LSP method
         if tok is None:
             return None
         body: str | None
-        if tok.kind == "var":
+        toks = list(tokens(index.line_text(line), index.line_start(line), Comments.of(dialect)))
+        sub = oword_key(toks) if toks and tok == toks[0] else None
+        if sub is not None or tok.kind == "oname":
+            key = sub[0] if sub is not None else tok.text
+            body = sub_hover(index, dialect, outline(text, dialect), key, line)
+        elif tok.kind == "named":
+            st = ls.docs.get(uri)
+            a = st.analysis if st is not None else None
+            body = named_hover(tok.text, tok.start, a.trace if a is not None and a.request.text == text else None)
+        elif tok.kind == "var":
             st = ls.docs.get(uri)
             a = st.analysis if st is not None else None
             trace = a.trace if a is not None and a.request.text == text else None
@@ -125,7 +135,7 @@ def register(ls: CnccServer) -> None:  # noqa: C901 - one closure per LSP method
         if ref is None:
             return None
         found = [lsp.Location(uri=uri, range=convert.span_range(index, r.start, r.end)) for r in out.definitions(ref)]
-        if not found and ref.kind == "program":
+        if not found and ref.kind in ("program", "sub"):
             found = _program_files(ls, uri, ref)
         return found or None
 
@@ -182,15 +192,20 @@ def _symbols(out: Outline, index: Any) -> list[lsp.DocumentSymbol]:
     found = []
     for r in out.programs:
         found.append((r.start, f"O{r.key}", "program", lsp.SymbolKind.Module, r.start, r.end))
+    for r in out.subs:
+        end = out.sub_ends.get(r.key, r.end)
+        name = f"o<{r.key}>" if not r.key.isdigit() else f"o{r.key}"
+        found.append((r.start, name, "subroutine", lsp.SymbolKind.Function, r.start, max(end, r.end)))
     for r in out.labels:
         if r.key in called:
             found.append((r.start, f"N{r.key}", "subprogram", lsp.SymbolKind.Function, r.start, r.end))
     for start, end, _tool, text in out.tools:
         found.append((start, text, "tool", lsp.SymbolKind.Event, start, end))
     syms = []
-    for _, name, detail, kind, a, b in sorted(found):
+    for start, name, detail, kind, a, b in sorted(found):
         rng = convert.span_range(index, a, b)
-        syms.append(lsp.DocumentSymbol(name=name, detail=detail, kind=kind, range=rng, selection_range=rng))
+        sel = convert.span_range(index, start, min(b, index.line_end(index.line_of(start))))
+        syms.append(lsp.DocumentSymbol(name=name, detail=detail, kind=kind, range=rng, selection_range=sel))
     return syms
 
 
@@ -209,7 +224,8 @@ def _program_files(ls: CnccServer, uri: str, ref: Ref) -> list[lsp.Location]:
         for name in names:
             stem, ext = os.path.splitext(name)
             full = os.path.join(folder, name)
-            if ext.lower() in GCODE_SUFFIXES and program_key(stem) == ref.key and full != path:
+            same = stem.lower() == ref.key if ref.kind == "sub" else program_key(stem) == ref.key
+            if ext.lower() in GCODE_SUFFIXES and same and full != path:
                 found.append(lsp.Location(uri="file://" + full, range=lsp.Range(
                     start=lsp.Position(line=0, character=0), end=lsp.Position(line=0, character=0))))
     return found

@@ -65,7 +65,12 @@ def compile_commands(req: Request, dialect: Dialect, machine: MachineModel, sour
                           strict=opts.strict)
     macro = driver.macro_options(opts, sink, sources)
     macro.trace = trace
-    cmds = lower(src, dialect, sink, iopts, macro)
+    if trace is not None and dialect.macro_flavour == "linuxcnc":
+        from cncc.lsp.linuxcnc_trace import lower_traced
+
+        cmds = lower_traced(src, dialect, sink, iopts, macro, trace)
+    else:
+        cmds = lower(src, dialect, sink, iopts, macro)
     if machine_coords:
         opts.emit = "timing"  # a backend that reads machine coordinates: offsets and tool lengths applied
         return driver.path_passes(cmds, dialect, machine, opts, sink)
