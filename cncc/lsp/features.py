@@ -16,10 +16,10 @@ from cncc.lsp.analysis import Request, analyze, new_analysis
 from cncc.lsp.complete import complete
 from cncc.lsp.config import open_dialect
 from cncc.lsp.hover import word_hover
-from cncc.lsp.navigate import Outline, Ref, oword_key, outline, program_key
+from cncc.lsp.navigate import Outline, Ref, outline, oword_key, program_key
 from cncc.lsp.scan import Comments, token_at, tokens
-from cncc.lsp.subs import named_hover, sub_hover
 from cncc.lsp.server import CnccServer
+from cncc.lsp.subs import named_hover, sub_hover
 from cncc.lsp.variables import hover_variable
 
 GCODE_SUFFIXES = (".nc", ".cnc", ".tap", ".ngc", ".gcode", ".mpf", ".ptp", "")
