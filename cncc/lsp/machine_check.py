@@ -22,6 +22,7 @@ it found before; ``result.step`` says where it stopped.
 
 from __future__ import annotations
 
+import re
 from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
@@ -90,6 +91,7 @@ def machine_phase(a: Analysis, out: MachineCheck, check: Callable[[], None]) -> 
             return
     out.diagnostics.extend(_new(sink, a.diagnostics))
     covered: set[Span] = set()
+    blind = False  # soft limits checked without the work offsets
     if configured:
         check()
         out.step = "checking limits"
@@ -97,6 +99,9 @@ def machine_phase(a: Analysis, out: MachineCheck, check: Callable[[], None]) -> 
         check()
         found = limit_diagnostics(nominal, cmds, machine)
         covered = {d.span for d in found}
+        blind = offsets_missing(settings, a.text)
+        if blind:
+            found = without_offsets(found, settings.offsets)
         out.diagnostics.extend(found)
     level = max(0, min(3, settings.opt_level))
     traj = nominal if configured and level == 0 else None
@@ -117,8 +122,41 @@ def machine_phase(a: Analysis, out: MachineCheck, check: Callable[[], None]) -> 
     if configured and traj is not None:
         check()
         out.step = "verifying the trajectory"
-        out.diagnostics.extend(verify_diagnostics(traj, cmds, machine, level, covered))
+        checked = verify_diagnostics(traj, cmds, machine, level, covered)
+        if blind:  # the soft limits were summed up above
+            checked = [d for d in checked if d.code != dg.VERIFY_SOFT_LIMIT]
+        out.diagnostics.extend(checked)
     out.step = "done"
+
+
+_WORK_RE = re.compile(r"G[ \t]*0*5[4-9](?:\.[1-9])?(?![\d.])", re.IGNORECASE)
+
+
+def offsets_missing(settings: Any, text: str) -> bool:
+    """Whether the soft-limit checks lack the work offsets: a configured offsets file cannot be
+    read, or none is configured while the program selects a work system (G54 ... G59.x)."""
+    import os
+
+    if settings.offsets:
+        return not os.path.isfile(settings.path(settings.offsets))
+    return _WORK_RE.search(text) is not None
+
+
+def without_offsets(found: list[Diagnostic], offsets: str | None) -> list[Diagnostic]:
+    """``found`` with its soft-limit diagnostics replaced by one warning (W0775) on the first:
+    without a work offsets table every G54 ... position is a machine position, so a program
+    written for a fixture offset crosses the limits on nearly every block."""
+    soft = [d for d in found if d.code == dg.SOFT_LIMIT]
+    if not soft:
+        return found
+    rest = [d for d in found if d.code != dg.SOFT_LIMIT]
+    why = (f"the work offsets file {offsets!r} cannot be read" if offsets
+           else "no work offsets table is configured (offsets = \"offsets.toml\" in cncc.toml)")
+    lines = len({d.span.start for d in soft})
+    first = min(soft, key=lambda d: (d.span.source_id != 0, d.span.start))
+    message = (f"{lines} move(s) cross the machine's soft limits, the first here ({first.message}); "
+               f"but {why}, so program positions were checked as machine positions")
+    return [Diagnostic(dg.NO_OFFSETS_TABLE, Severity.WARNING, first.span, message), *rest]
 
 
 def _new(sink: DiagnosticSink, seen: Sequence[Diagnostic]) -> list[Diagnostic]:
