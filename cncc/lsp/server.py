@@ -22,24 +22,30 @@ import os
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, TypeVar
+from typing import TYPE_CHECKING, Any, TypeVar
 from urllib.parse import unquote, urlparse
 
 from lsprotocol import types as lsp
 from pygls.lsp.server import LanguageServer
 
 from cncc import __version__
-from cncc import diagnostics as dg
-from cncc.dialects import Dialect, DialectError
-from cncc.lsp import convert
-from cncc.lsp.analysis import Analysis, Request, analyze, new_analysis
-from cncc.lsp.config import Settings, find_config, guess_dialect, open_dialect, read_config
 from cncc.lsp.guard import Gate, Job
-from cncc.lsp.machine_check import MachineCheck, machine_phase, wanted, warm_up
 from cncc.lsp.positions import LineIndex
-from cncc.source import SourceMap, Span
+
+if TYPE_CHECKING:  # the compiler side is imported on first use (or by the warm-up thread)
+    from cncc.dialects import Dialect
+    from cncc.lsp import convert
+    from cncc.lsp.analysis import Analysis
+    from cncc.lsp.config import Settings
+    from cncc.source import SourceMap
 
 T = TypeVar("T")
+
+WARM_UP_MODULES = ("cncc.lsp.handlers", "cncc.lsp.analysis", "cncc.lsp.machine_check", "cncc.frontend",
+                   "cncc.frontend.fastpath", "cncc.frontend.macro.executor", "cncc.passes.expand_cycles",
+                   "cncc.passes.arc_check", "cncc.backends.nominal", "cncc.driver")
+"""What the first analysis needs, imported in a background thread once the client has said
+``initialized`` (numpy and the planner are left to the second phase's own warm-up)."""
 
 
 @dataclass(slots=True)
@@ -58,11 +64,24 @@ class DocState:
 class CnccServer(LanguageServer):
     def __init__(self) -> None:
         super().__init__("cncc", __version__, text_document_sync_kind=lsp.TextDocumentSyncKind.Incremental)
-        self.settings = Settings()
         self.client_settings: dict[str, Any] = {}
         self.docs: dict[str, DocState] = {}
         self.root: str | None = None
         self.gate = Gate()  # background jobs wait while a first phase runs
+
+    def warm_up(self) -> None:
+        """Import the compiler side in a daemon thread (the first analysis then starts at once);
+        an import that fails is left to the request that needs it, which reports it."""
+        import threading
+
+        def work() -> None:
+            import importlib
+
+            for name in WARM_UP_MODULES:
+                with contextlib.suppress(Exception):
+                    importlib.import_module(name)
+
+        threading.Thread(target=work, name="cncc-lsp-warm-up", daemon=True).start()
 
     # ---- settings and dialects
     def doc_path(self, uri: str) -> str:
@@ -70,6 +89,8 @@ class CnccServer(LanguageServer):
         return unquote(parsed.path) if parsed.scheme == "file" else ""
 
     def settings_for(self, uri: str) -> tuple[Settings, str | None]:
+        from cncc.lsp.config import Settings, find_config, read_config
+
         path = self.doc_path(uri)
         settings = Settings(root=self.root or "")
         error = None
@@ -83,15 +104,18 @@ class CnccServer(LanguageServer):
         return settings, error
 
     def dialect_name(self, uri: str, text: str, settings: Settings) -> str:
+        from cncc.lsp.config import guess_dialect
+
         return guess_dialect(self.doc_path(uri) or uri, text, settings.dialect)
 
     def dialect_of(self, uri: str, text: str) -> Dialect:
+        from cncc.dialects import DialectError
+        from cncc.lsp.config import DEFAULT_DIALECT, Settings, open_dialect
+
         settings, _ = self.settings_for(uri)
         try:
             return open_dialect(self.dialect_name(uri, text, settings), settings)
         except DialectError:
-            from cncc.lsp.config import DEFAULT_DIALECT
-
             return open_dialect(DEFAULT_DIALECT, Settings())
 
     # ---- analyses
@@ -121,6 +145,11 @@ class CnccServer(LanguageServer):
             st.machine_job = None
 
     async def _debounced(self, uri: str) -> None:
+        from cncc import diagnostics as dg
+        from cncc.lsp.analysis import Request, analyze, new_analysis
+        from cncc.lsp.machine_check import wanted
+        from cncc.source import Span
+
         settings, error = self.settings_for(uri)
         await asyncio.sleep(settings.debounce_ms / 1000.0)
         doc = self.workspace.get_text_document(uri)
@@ -154,6 +183,10 @@ class CnccServer(LanguageServer):
             st.machine_task = asyncio.ensure_future(self._machine_phase(uri, a))
 
     async def _machine_phase(self, uri: str, a: Analysis) -> None:
+        from cncc import diagnostics as dg
+        from cncc.lsp.machine_check import MachineCheck, machine_phase, warm_up
+        from cncc.source import Span
+
         st = self.state(uri)
         m = MachineCheck()
         job = Job(lambda check: machine_phase(a, m, check), a.request.settings.budget_s, gate=self.gate,
@@ -180,6 +213,10 @@ class CnccServer(LanguageServer):
         self.publish(a)
 
     def publish(self, a: Analysis) -> None:
+        from cncc import diagnostics as dg
+        from cncc.lsp import convert
+        from cncc.source import Span
+
         settings = a.request.settings
         index, uri = a.index, a.request.uri
         items = convert.diagnostics(index, uri, a.diagnostics, settings.max_diagnostics, files_of(a.sources, index))
