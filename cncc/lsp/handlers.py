@@ -248,7 +248,8 @@ async def _code_actions(ls: CnccServer, params: lsp.CodeActionParams) -> list[ls
                     target = open_dialect(name, settings)
                 except DialectError:
                     continue
-                conv = actions.convert_selection(index, cur.commands, rng.start.line, last, dialect, target)
+                chosen = cur.commands_between(index.line_start(rng.start.line), index.line_end(last))
+                conv = actions.convert_selection(index, chosen, rng.start.line, last, dialect, target)
                 if conv is not None:
                     out.append(_action(conv[0], lsp.CodeActionKind.RefactorRewrite, uri, index, conv[1], None))
     return out

@@ -147,7 +147,18 @@ class CnccServer(LanguageServer):
     async def _debounced(self, uri: str) -> None:
         from cncc import diagnostics as dg
         from cncc.lsp.analysis import Request, analyze, new_analysis
+        from cncc.lsp.incremental import resume
         from cncc.lsp.machine_check import wanted
+
+        def incremental(old: Analysis, a: Analysis, check: Callable[[], None]) -> bool:
+            try:
+                return resume(old, a, check)
+            except Exception:  # a bug in the resume must not cost the diagnostics: run in full
+                import logging
+
+                logging.getLogger(__name__).exception("incremental analysis failed; running in full")
+                a.dialect = a.machine = None
+                return False
         from cncc.source import Span
 
         settings, error = self.settings_for(uri)
@@ -158,7 +169,14 @@ class CnccServer(LanguageServer):
         req = Request(uri, self.doc_path(uri), st.version, text, self.dialect_name(uri, text, settings), settings)
         a = new_analysis(req)
         a.index.encoding = _encoding(self)
-        job = Job(lambda check: analyze(a, check), settings.budget_s, gate=self.gate)
+        before = st.analysis if st.analysis is not None and st.analysis.request.uri == uri else None
+
+        def work(check: Callable[[], None]) -> None:
+            if before is not None and incremental(before, a, check):
+                return
+            analyze(a, check)
+
+        job = Job(work, settings.budget_s, gate=self.gate)
         st.job = job.start()
         try:
             reason = await asyncio.wrap_future(job.future)

@@ -1,0 +1,121 @@
+"""Incremental analysis (issue 20): after an edit, a resumed analysis (re-run from the last
+checkpoint before the change until the state meets the old run's) gives exactly what a full
+analysis of the new text gives -- commands, diagnostics, line times -- and re-runs few lines."""
+
+from __future__ import annotations
+
+import random
+import sys
+from pathlib import Path
+
+import pytest
+
+from cncc.diagnostics import Diagnostic
+from cncc.lsp.analysis import Analysis, Request, analyze, new_analysis
+from cncc.lsp.config import Settings
+from cncc.lsp.incremental import EVERY, Shifts, changed_range, materialize, resume
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "bench"))
+from gen import cam_program
+
+MIXED = "".join([
+    "%\nO1000 (mixed program)\nG90 G17 G21 G94\nG00 X0 Y0 Z5.\nG01 Z-1. F600.\n",
+    *(f"G01 X{i % 17}.5 Y{i % 11}. (pass {i})\n" if i % 7 else f"G02 X{i % 17 + 2}.5 Y{i % 11}. I1. J0\n"
+      for i in range(600)),
+    "G91\n", *("G01 X0.5 Y-0.25\n" for _ in range(200)), "G90\n",
+    *(f"G00 X{i}. Y{i}.\nG01 Z-2. F300.\nG00 Z5.\n" for i in range(100)),
+    "G01 X1. Q\n",  # an error (a value missing) far down
+    "M30\n%\n",
+])
+
+
+def full(text: str, dialect: str = "syntec") -> Analysis:
+    a = new_analysis(Request("file:///p.nc", "/p.nc", 1, text, dialect, Settings()))
+    analyze(a, lambda: None)
+    return a
+
+
+def resumed(old: Analysis, text: str) -> Analysis | None:
+    a = new_analysis(Request("file:///p.nc", "/p.nc", 2, text, old.request.dialect, Settings()))
+    return a if resume(old, a, lambda: None) else None
+
+
+def assert_same(a: Analysis, b: Analysis) -> None:
+    assert materialize(a.commands, a.shifts) == materialize(b.commands, b.shifts)
+    def key(d: Diagnostic) -> tuple[str, int, int, int, str]:
+        return (d.code, d.span.source_id, d.span.start, d.span.end, d.message)
+
+    assert sorted(map(key, a.diagnostics)) == sorted(map(key, b.diagnostics))
+    assert a.line_time_s == b.line_time_s
+
+
+def random_edit(rnd: random.Random, text: str) -> str:
+    at = rnd.randrange(len(text))
+    kind = rnd.choice(["replace", "insert", "delete", "line"])
+    if kind == "replace":
+        return text[:at] + rnd.choice("0123456789 XYG.") + text[at + 1:]
+    if kind == "insert":
+        return text[:at] + rnd.choice("0123456789XY.\n") + text[at:]
+    if kind == "delete":
+        return text[:at] + text[at + 1:]
+    return text[:at] + "\nG01 X1. Y2. Z-1.\n" + text[at:]
+
+
+@pytest.mark.parametrize(("name", "text"), [("cam", cam_program(3000)), ("mixed", MIXED)], ids=["cam", "mixed"])
+def test_resumed_analysis_equals_the_full_one_after_random_edits(name: str, text: str) -> None:
+    rnd = random.Random(20)
+    old = full(text)
+    assert old.memory is not None and old.memory.light and len(old.memory.checkpoints) > 5
+    resumed_count = 0
+    for _ in range(30):
+        text = random_edit(rnd, text)
+        ref = full(text)
+        got = resumed(old, text)
+        if got is not None:
+            resumed_count += 1
+            assert_same(got, ref)
+            old = got  # chain the resumes: the shifts pile up
+        else:
+            old = ref
+    assert resumed_count >= 25  # nearly every edit of a plain program resumes
+
+
+def test_a_one_digit_edit_reruns_about_one_checkpoint_interval() -> None:
+    text = cam_program(20_000)
+    old = full(text)
+    lines = text.split("\n")
+    line = 10_000
+    col = lines[line].find(".") + 1
+    lines[line] = lines[line][:col] + ("1" if lines[line][col] != "1" else "2") + lines[line][col + 1:]
+    got = resumed(old, "\n".join(lines))
+    assert got is not None and got.resumed is not None
+    first, last = got.resumed
+    assert first <= line < last and last - first <= 2 * EVERY + 2
+    assert_same(got, full("\n".join(lines)))
+
+
+def test_an_edit_that_adds_a_frame_transform_runs_in_full() -> None:
+    old = full(MIXED)
+    text = MIXED.replace("G01 Z-1. F600.\n", "G01 Z-1. F600.\nG68 X0 Y0 R30.\n", 1)
+    assert resumed(old, text) is None
+
+
+def test_macro_programs_are_not_resumed() -> None:
+    old = full("#1=5\nG01 X#1 F100.\nM30\n", "fanuc")
+    assert old.memory is None or not old.memory.light
+    assert resumed(old, "#1=6\nG01 X#1 F100.\nM30\n") is None
+
+
+def test_changed_range() -> None:
+    assert changed_range("abcdef", "abXdef") == (2, 3)
+    assert changed_range("abc", "abc") == (3, 0)
+    assert changed_range("aaaa", "aaaaa") == (4, 0)  # prefix and suffix never overlap
+    long = "x" * 10_000
+    assert changed_range(long + "a" + long, long + "bb" + long) == (10_000, 10_000)
+
+
+def test_shifts_compose() -> None:
+    s = Shifts().spliced(10, 12, 3, 5)  # items 10, 11 replaced by 3 new ones, text after +5
+    assert [s.delta_at(k) for k in (9, 10, 12, 13, 100)] == [0, 0, 0, 5, 5]
+    t = s.spliced(2, 4, 1, -1)  # earlier splice: the old +5 tail moves down one index, now +4
+    assert [t.delta_at(k) for k in (1, 2, 3, 11, 12, 99)] == [0, 0, -1, -1, 4, 4]
