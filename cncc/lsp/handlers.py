@@ -32,6 +32,9 @@ def did_change_configuration(ls: CnccServer, params: lsp.DidChangeConfigurationP
         ls.schedule(uri, st.version)
 
 def did_open(ls: CnccServer, params: lsp.DidOpenTextDocumentParams) -> None:
+    from cncc.lsp.documents import speed_up
+
+    speed_up(ls.workspace.get_text_document(params.text_document.uri))
     ls.schedule(params.text_document.uri, params.text_document.version)
 
 def did_change(ls: CnccServer, params: lsp.DidChangeTextDocumentParams) -> None:

@@ -209,8 +209,6 @@ def resume(old: Analysis, a: Analysis, check: Callable[[], None]) -> bool:
             or old.request.dialect != req.dialect or old.request.settings != req.settings
             or req.settings.target or old.request.path != req.path or len(old.commands) >= MAX_COMMANDS):
         return False
-    if not eligible(req.text, old.dialect):
-        return False
     t0 = time.perf_counter()
     try:
         _resume(old, a, check)
@@ -230,6 +228,12 @@ def _resume(old: Analysis, a: Analysis, check: Callable[[], None]) -> None:
     assert memory is not None and old.dialect is not None and old.machine is not None
     old_text, text = old.text, a.text
     prefix, suffix = changed_range(old_text, text)
+    # the old text took the fast path; the new one does iff its changed lines do (the marks that
+    # send a program down the general path -- '#', keywords, call codes -- never span lines)
+    lo_line = text.rfind("\n", 0, prefix) + 1
+    hi_line = text.find("\n", len(text) - suffix)
+    if not eligible(text[lo_line:hi_line if hi_line >= 0 else len(text)], old.dialect):
+        raise _GiveUp
     d_chars = len(text) - len(old_text)
     d_lines = text.count("\n") - old_text.count("\n")
     first_line = a.index.line_of(prefix)
@@ -303,12 +307,15 @@ def _resume(old: Analysis, a: Analysis, check: Callable[[], None]) -> None:
     a.commands = old.commands[:i] + region + old.commands[j:]
     a.shifts = old.shifts.spliced(i, j, len(region), d_chars)
     met_line_old = met.line - d_lines if met is not None else old.index.line_count
-    kept_times = {ln: t for ln, t in old.line_time_s.items() if ln < start_line}
+    if met is not None and d_lines == 0:  # the lines did not move: copy, then redo the region
+        kept_times = dict(old.line_time_s)
+        for ln in range(start_line, met.line):
+            kept_times.pop(ln, None)
+    else:
+        kept_times = {ln: t for ln, t in old.line_time_s.items() if ln < start_line}
+        if met is not None:
+            kept_times.update((ln + d_lines, t) for ln, t in old.line_time_s.items() if ln >= met_line_old)
     kept_times.update(times)
-    if met is not None:
-        for ln, t in old.line_time_s.items():
-            if ln >= met_line_old:
-                kept_times[ln + d_lines] = t
     a.line_time_s = kept_times
     diags: list[Diagnostic] = []
     for d in old.diagnostics:

@@ -40,6 +40,7 @@ if TYPE_CHECKING:  # the compiler side is imported on first use (or by the warm-
     from cncc.source import SourceMap
 
 T = TypeVar("T")
+GUESS_HEAD_CHARS = 200_000  # what cncc.lsp.config.guess_dialect reads of a document (its sample)
 
 WARM_UP_MODULES = ("cncc.lsp.handlers", "cncc.lsp.analysis", "cncc.lsp.machine_check", "cncc.frontend",
                    "cncc.frontend.fastpath", "cncc.frontend.macro.executor", "cncc.passes.expand_cycles",
@@ -65,6 +66,7 @@ class CnccServer(LanguageServer):
     def __init__(self) -> None:
         super().__init__("cncc", __version__, text_document_sync_kind=lsp.TextDocumentSyncKind.Incremental)
         self.client_settings: dict[str, Any] = {}
+        self._guesses: dict[str, tuple[Settings, str, str]] = {}  # uri -> (settings, text head, dialect)
         self.docs: dict[str, DocState] = {}
         self.root: str | None = None
         self.gate = Gate()  # background jobs wait while a first phase runs
@@ -104,9 +106,18 @@ class CnccServer(LanguageServer):
         return settings, error
 
     def dialect_name(self, uri: str, text: str, settings: Settings) -> str:
+        """The document's dialect (:func:`cncc.lsp.config.guess_dialect`); the guess reads the
+        head of the text only, so it is kept until that head or the settings change."""
         from cncc.lsp.config import guess_dialect
 
-        return guess_dialect(self.doc_path(uri) or uri, text, settings.dialect)
+        head = text[:GUESS_HEAD_CHARS]
+        got = self._guesses.get(uri)
+        if got is not None and got[0] == settings and got[1] == head:
+            return got[2]
+        name = guess_dialect(self.doc_path(uri) or uri, text, settings.dialect)
+        if len(text) > GUESS_HEAD_CHARS:
+            self._guesses[uri] = (settings, head, name)
+        return name
 
     def dialect_of(self, uri: str, text: str) -> Dialect:
         from cncc.dialects import DialectError

@@ -119,3 +119,37 @@ def test_shifts_compose() -> None:
     assert [s.delta_at(k) for k in (9, 10, 12, 13, 100)] == [0, 0, 0, 5, 5]
     t = s.spliced(2, 4, 1, -1)  # earlier splice: the old +5 tail moves down one index, now +4
     assert [t.delta_at(k) for k in (1, 2, 3, 11, 12, 99)] == [0, 0, -1, -1, 4, 4]
+
+
+@pytest.mark.parametrize("encoding", ["utf-16", "utf-8", "utf-32"])
+def test_fast_document_changes_like_pygls(encoding: str) -> None:
+    from lsprotocol import types as lsp
+    from pygls.workspace import PositionCodec, TextDocument
+
+    from cncc.lsp.documents import FastTextDocument
+
+    rnd = random.Random(7)
+    text = "G01 X1. (é 😀)\r\nG02 X2. Y3.\n\nM30\n" * 20
+    ref = TextDocument("file:///a.nc", text, position_codec=PositionCodec(encoding))
+    fast = FastTextDocument("file:///a.nc", text, position_codec=PositionCodec(encoding))
+    def boundaries(line: str) -> list[int]:
+        """Valid columns of a line (its ends of characters, in code units; not past its end)."""
+        out, units = [0], 0
+        for ch in line.rstrip("\r"):
+            units += len(ch.encode("utf-16-le")) // 2 if encoding == "utf-16" else \
+                len(ch.encode("utf-8")) if encoding == "utf-8" else 1
+            out.append(units)
+        return out
+
+    for _ in range(300):
+        lines = ref.source.split("\n")
+        l1 = rnd.randrange(len(lines))
+        l2 = min(len(lines) - 1, l1 + rnd.choice([0, 0, 1, 3]))
+        c1 = rnd.choice(boundaries(lines[l1]))
+        c2 = rnd.choice([c for c in boundaries(lines[l2]) if l2 > l1 or c >= c1])
+        change = lsp.TextDocumentContentChangePartial(
+            range=lsp.Range(start=lsp.Position(line=l1, character=c1), end=lsp.Position(line=l2, character=c2)),
+            text=rnd.choice(["", "X", "7", "\n", "G1 X2.\nY3."]))
+        ref.apply_change(change)
+        fast.apply_change(change)
+        assert fast.source == ref.source
