@@ -99,7 +99,7 @@ def machine_phase(a: Analysis, out: MachineCheck, check: Callable[[], None]) -> 
         check()
         found = limit_diagnostics(nominal, cmds, machine)
         covered = {d.span for d in found}
-        blind = offsets_missing(settings, a.text)
+        blind = offsets_missing(settings, a.text, found)
         if blind:
             found = without_offsets(found, settings.offsets)
         out.diagnostics.extend(found)
@@ -132,14 +132,21 @@ def machine_phase(a: Analysis, out: MachineCheck, check: Callable[[], None]) -> 
 _WORK_RE = re.compile(r"G[ \t]*0*5[4-9](?:\.[1-9])?(?![\d.])", re.IGNORECASE)
 
 
-def offsets_missing(settings: Any, text: str) -> bool:
+MANY_CROSSINGS = 10  # more moves than this beyond the limits, and no offsets table: a missing table
+
+
+def offsets_missing(settings: Any, text: str, found: Sequence[Diagnostic]) -> bool:
     """Whether the soft-limit checks lack the work offsets: a configured offsets file cannot be
-    read, or none is configured while the program selects a work system (G54 ... G59.x)."""
+    read; or none is configured while the program selects a work system (G54 ... G59.x) or
+    more than :data:`MANY_CROSSINGS` moves cross the limits (a CAM program's coordinates are
+    work coordinates: taken as machine positions, nearly every block crosses)."""
     import os
 
     if settings.offsets:
         return not os.path.isfile(settings.path(settings.offsets))
-    return _WORK_RE.search(text) is not None
+    if _WORK_RE.search(text) is not None:
+        return True
+    return len({d.span.start for d in found if d.code == dg.SOFT_LIMIT}) > MANY_CROSSINGS
 
 
 def without_offsets(found: list[Diagnostic], offsets: str | None) -> list[Diagnostic]:

@@ -61,3 +61,15 @@ async def test_with_the_offsets_the_program_is_within_the_limits(client: Languag
     assert len(pubs) >= 2
     codes = [d.code for d in pubs[-1]]
     assert "E0703" not in codes and "W0775" not in codes and "E0903" not in codes
+
+
+async def test_many_crossings_without_offsets_and_without_g54_give_one_warning(client: LanguageClient) -> None:
+    text = PROGRAM.replace("G54 ", "")  # G54 is in force at power-on: the same program
+    root: Path = client.root  # type: ignore[attr-defined]
+    (root / "nog54").mkdir(exist_ok=True)
+    (root / "nog54" / "cncc.toml").write_text(f'machine = "{DATA / "small-mill.toml"}"\n', encoding="utf-8")
+    uri, v = await open_doc(client, "nog54/prog.nc", text)
+    found = await client.published.wait(  # type: ignore[attr-defined]
+        uri, v, until=lambda ds: any(d.code in ("E0703", "W0775") for d in ds))
+    codes = [d.code for d in found]
+    assert codes.count("W0775") == 1 and "E0703" not in codes  # 21 crossings > MANY_CROSSINGS
