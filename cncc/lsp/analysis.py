@@ -69,6 +69,7 @@ class Analysis:
     memory: Memory | None = None  # checkpoints for the incremental analysis of the next edit
     shifts: Shifts = field(default_factory=lambda: _no_shifts())  # offsets of ``commands`` not yet moved
     resumed: tuple[int, int] | None = None  # lines re-run by an incremental analysis (else a full run)
+    region: tuple[int, int, int] | None = None  # its offsets: start, end in the new text, end in the old
 
     def commands_between(self, lo: int, hi: int) -> list[Command]:
         """The commands that start in ``lo..hi`` (offsets), spans where the text has them."""

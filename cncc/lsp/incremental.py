@@ -340,6 +340,7 @@ def _resume(old: Analysis, a: Analysis, check: Callable[[], None]) -> None:
     if met is not None and old.reached >= hi_old:
         a.reached = old.reached + d_chars
     a.resumed = (start_line, met.line if met is not None else a.index.line_count)
+    a.region = (lo, hi_new, hi_old)
 
 
 def _shift_diag(d: Diagnostic, delta: int) -> Diagnostic:

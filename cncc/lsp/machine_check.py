@@ -24,7 +24,7 @@ from __future__ import annotations
 
 import re
 from collections.abc import Callable, Iterator, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING, Any
 
 from cncc import diagnostics as dg
@@ -133,6 +133,40 @@ _WORK_RE = re.compile(r"G[ \t]*0*5[4-9](?:\.[1-9])?(?![\d.])", re.IGNORECASE)
 
 
 MANY_CROSSINGS = 10  # more moves than this beyond the limits, and no offsets table: a missing table
+
+
+def region_first(a: Analysis, old: Analysis, check: Callable[[], None]) -> MachineCheck | None:
+    """The machine checks of an incremental analysis, quickly: the old second phase's
+    diagnostics outside the re-run region (shifted), and the soft limits, step rates and axis
+    speeds of the region's own moves (its first-phase commands taken to machine coordinates by
+    the frame passes).  None when there is nothing to start from (the full phase follows
+    anyway and replaces this)."""
+    from cncc import driver
+    from cncc.passes import PassContext, run_pipeline
+
+    prev = old.machine_check
+    if (a.region is None or prev is None or prev.stopped or a.machine is None or a.dialect is None
+            or not a.request.settings.machine
+            or any(d.code in (dg.NO_OFFSETS_TABLE, dg.ANALYSIS_STOPPED) for d in prev.diagnostics)):
+        return None
+    lo, hi_new, hi_old = a.region
+    delta = hi_new - hi_old
+    kept = []
+    for d in prev.diagnostics:
+        s = d.span
+        if s.source_id != 0 or s.start < lo:
+            kept.append(d)
+        elif s.start >= hi_old:
+            kept.append(replace(d, span=Span(0, s.start + delta, s.end + delta)))
+    check()
+    cmds = [c for c in a.commands_between(lo, hi_new) if lo <= c.span.start < hi_new]
+    if cmds:
+        ctx = PassContext(sink=DiagnosticSink(), dialect=a.dialect, machine=a.machine)
+        moved = list(run_pipeline(driver.frame_passes(a.dialect, machine_coords=True), iter(cmds), ctx))
+        check()
+        traj, _ = driver.plan_trajectory(moved, a.machine, 0, DiagnosticSink())
+        kept += limit_diagnostics(traj, moved, a.machine)
+    return MachineCheck(diagnostics=kept, step="the changed region")
 
 
 def offsets_missing(settings: Any, text: str, found: Sequence[Diagnostic]) -> bool:

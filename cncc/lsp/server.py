@@ -209,14 +209,31 @@ class CnccServer(LanguageServer):
         st.ready.set()
         self.publish(a)
         if wanted(a):
-            st.machine_task = asyncio.ensure_future(self._machine_phase(uri, a))
+            st.machine_task = asyncio.ensure_future(self._machine_phase(uri, a, before))
 
-    async def _machine_phase(self, uri: str, a: Analysis) -> None:
+    async def _machine_phase(self, uri: str, a: Analysis, before: Analysis | None = None) -> None:
         from cncc import diagnostics as dg
-        from cncc.lsp.machine_check import MachineCheck, machine_phase, warm_up
+        from cncc.lsp.machine_check import MachineCheck, machine_phase, region_first, warm_up
         from cncc.source import Span
 
         st = self.state(uri)
+        if before is not None and a.region is not None:  # the changed region's checks first
+            box: list[MachineCheck | None] = []
+            quick = Job(lambda check: box.append(region_first(a, before, check)), a.request.settings.budget_s,
+                        gate=self.gate, background=True, prelude=warm_up).start()
+            st.machine_job = quick
+            try:
+                reason = await asyncio.wrap_future(quick.future)
+            except asyncio.CancelledError:
+                quick.cancel(grace_s=0.0)
+                raise
+            except Exception:  # a bug in the quick step: the full phase below still runs
+                reason = "failed"
+            if st.analysis is not a or reason == "cancelled":
+                return
+            if reason is None and box and box[0] is not None:
+                a.machine_check = box[0]
+                self.publish(a)
         m = MachineCheck()
         job = Job(lambda check: machine_phase(a, m, check), a.request.settings.budget_s, gate=self.gate,
                   background=True, prelude=warm_up)

@@ -73,3 +73,37 @@ async def test_many_crossings_without_offsets_and_without_g54_give_one_warning(c
         uri, v, until=lambda ds: any(d.code in ("E0703", "W0775") for d in ds))
     codes = [d.code for d in found]
     assert codes.count("W0775") == 1 and "E0703" not in codes  # 21 crossings > MANY_CROSSINGS
+
+
+async def test_machine_checks_of_the_changed_region_come_first(client: LanguageClient) -> None:
+    import asyncio
+
+    from lsprotocol import types as lsp
+
+    from tests.lsp.lsp_client import edit, pos
+
+    # small-mill.toml: X soft limits -1..100.  Line 1 crosses (X120.); an edit on line 300 makes
+    # X150. there; the quick step publishes both before the full second phase ends.
+    lines = ["G90 G00 X0 Y0 Z0", "G01 X120. F300.", "G01 X10. F300."]
+    lines += [f"G01 X{10 + i % 50}. Y{i % 40}. F300." for i in range(600)]
+    lines += ["M30", ""]
+    text = "\n".join(lines)
+    root: Path = client.root  # type: ignore[attr-defined]
+    (root / "region").mkdir(exist_ok=True)
+    (root / "region" / "cncc.toml").write_text(f'machine = "{DATA / "small-mill.toml"}"\n', encoding="utf-8")
+    uri, v = await open_doc(client, "region/prog.nc", text)
+    await client.published.wait(uri, v, until=lambda ds: any(d.code == "E0703" for d in ds))  # type: ignore[attr-defined]
+    target = 300
+    col = lines[target].index("X") + 1
+    old = lines[target][col:lines[target].index(".")]
+    v2 = await edit(client, uri, lsp.Range(start=pos(target, col), end=pos(target, col + len(old))), "150")
+    for _ in range(300):
+        pubs = client.published.all(uri, v2)  # type: ignore[attr-defined]
+        if len(pubs) >= 3:
+            break
+        await asyncio.sleep(0.05)
+    pubs = client.published.all(uri, v2)  # type: ignore[attr-defined]
+    assert len(pubs) >= 3  # first phase, the changed region's machine checks, the full second phase
+    quick = sorted(d.range.start.line for d in pubs[1] if d.code == "E0703")
+    final = sorted(d.range.start.line for d in pubs[-1] if d.code == "E0703")
+    assert quick == [1, target] and final == [1, target]
