@@ -218,7 +218,8 @@ def main() -> None:
     options: dict[str, Any] = {"debounce_ms": 0, "budget_s": 60}
     if args.machine:
         options.update(machine=args.machine, opt_level=args.opt_level)
-    _, c = startup_s([sys.executable, "-m", "cncc", "lsp"], options)
+    log = ["--log", os.environ["CNCC_LSP_LOG"]] if os.environ.get("CNCC_LSP_LOG") else []  # the server's own times
+    _, c = startup_s([sys.executable, "-m", "cncc", "lsp", *log], options)
     c.send({"method": "initialized", "params": {}})
     version = [0]
     for n in sizes:

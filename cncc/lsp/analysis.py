@@ -94,7 +94,14 @@ def _no_shifts() -> Shifts:
     return Shifts()
 
 
-def new_analysis(req: Request) -> Analysis:
+def new_analysis(req: Request, previous: Analysis | None = None) -> Analysis:
+    """A fresh analysis of ``req``; its line index is derived from ``previous`` (the analysis
+    of an earlier version of the same document) when there is one."""
+    if previous is not None and previous.request.uri == req.uri:
+        from cncc.lsp.incremental import changed_range
+
+        prefix, suffix = changed_range(previous.text, req.text)
+        return Analysis(req, LineIndex.after_edit(previous.index, req.text, prefix, suffix))
     return Analysis(req, LineIndex(req.text))
 
 

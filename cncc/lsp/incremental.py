@@ -235,7 +235,7 @@ def _resume(old: Analysis, a: Analysis, check: Callable[[], None]) -> None:
     if not eligible(text[lo_line:hi_line if hi_line >= 0 else len(text)], old.dialect):
         raise _GiveUp
     d_chars = len(text) - len(old_text)
-    d_lines = text.count("\n") - old_text.count("\n")
+    d_lines = text.count("\n", prefix, len(text) - suffix) - old_text.count("\n", prefix, len(old_text) - suffix)
     first_line = a.index.line_of(prefix)
     lines = sorted(memory.checkpoints)
     at = bisect.bisect_right(lines, first_line) - 1

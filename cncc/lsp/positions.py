@@ -29,6 +29,28 @@ class LineIndex:
         starts.pop()
         self._starts = starts
 
+    @classmethod
+    def after_edit(cls, old: LineIndex, text: str, prefix: int, suffix: int) -> LineIndex:
+        """The index of ``text``, which equals ``old.text`` but for the characters between its
+        first ``prefix`` and last ``suffix`` ones: the old line starts are kept (shifted after
+        the change) and only the changed part is scanned."""
+        new = cls.__new__(cls)
+        new.text = text
+        new.encoding = old.encoding
+        starts = old._starts
+        keep = bisect.bisect_right(starts, prefix)
+        end_new = len(text) - suffix
+        region = []
+        i = text.find("\n", prefix, end_new)
+        while i >= 0:
+            region.append(i + 1)
+            i = text.find("\n", i + 1, end_new)
+        tail = bisect.bisect_left(starts, len(old.text) - suffix + 1)
+        delta = len(text) - len(old.text)
+        moved = starts[tail:] if delta == 0 else [s + delta for s in starts[tail:]]
+        new._starts = starts[:keep] + region + moved
+        return new
+
     @property
     def line_count(self) -> int:
         return len(self._starts)

@@ -18,7 +18,9 @@ from __future__ import annotations
 
 import asyncio
 import contextlib
+import logging
 import os
+import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -40,6 +42,7 @@ if TYPE_CHECKING:  # the compiler side is imported on first use (or by the warm-
     from cncc.source import SourceMap
 
 T = TypeVar("T")
+_log = logging.getLogger(__name__)
 GUESS_HEAD_CHARS = 200_000  # what cncc.lsp.config.guess_dialect reads of a document (its sample)
 
 WARM_UP_MODULES = ("cncc.lsp.handlers", "cncc.lsp.analysis", "cncc.lsp.machine_check", "cncc.frontend",
@@ -112,7 +115,8 @@ class CnccServer(LanguageServer):
 
         head = text[:GUESS_HEAD_CHARS]
         got = self._guesses.get(uri)
-        if got is not None and got[0] == settings and got[1] == head:
+        if got is not None and got[0] == settings and (got[1] == head or number_edit(got[1], head)):
+            self._guesses[uri] = (settings, head, got[2])
             return got[2]
         name = guess_dialect(self.doc_path(uri) or uri, text, settings.dialect)
         if len(text) > GUESS_HEAD_CHARS:
@@ -156,6 +160,7 @@ class CnccServer(LanguageServer):
             st.machine_job = None
 
     async def _debounced(self, uri: str) -> None:
+        t_change = time.perf_counter()
         from cncc import diagnostics as dg
         from cncc.lsp.analysis import Request, analyze, new_analysis
         from cncc.lsp.incremental import resume
@@ -178,14 +183,17 @@ class CnccServer(LanguageServer):
         text = doc.source
         st = self.state(uri)
         req = Request(uri, self.doc_path(uri), st.version, text, self.dialect_name(uri, text, settings), settings)
-        a = new_analysis(req)
-        a.index.encoding = _encoding(self)
+        t_req = time.perf_counter()
         before = st.analysis if st.analysis is not None and st.analysis.request.uri == uri else None
+        a = new_analysis(req, before)
+        a.index.encoding = _encoding(self)
+        marks = [t_req, time.perf_counter()]
 
         def work(check: Callable[[], None]) -> None:
-            if before is not None and incremental(before, a, check):
-                return
-            analyze(a, check)
+            marks.append(time.perf_counter())
+            if before is None or not incremental(before, a, check):
+                analyze(a, check)
+            marks.append(time.perf_counter())
 
         job = Job(work, settings.budget_s, gate=self.gate)
         st.job = job.start()
@@ -208,6 +216,10 @@ class CnccServer(LanguageServer):
         st.analysis = a
         st.ready.set()
         self.publish(a)
+        _log.info("%s v%s: %s in %.1f ms (%.1f ms since the change; steps %s)", uri, req.version,
+                  f"lines {a.resumed[0] + 1}-{a.resumed[1]} re-run" if a.resumed else "full analysis",
+                  a.elapsed_s * 1000, (time.perf_counter() - t_change) * 1000,
+                  " ".join(f"{(t - t_change) * 1000:.1f}" for t in marks))
         if wanted(a):
             st.machine_task = asyncio.ensure_future(self._machine_phase(uri, a, before))
 
@@ -307,6 +319,25 @@ class CnccServer(LanguageServer):
     def text_and_index(self, uri: str) -> tuple[str, LineIndex]:
         text = self.workspace.get_text_document(uri).source
         return text, LineIndex(text, _encoding(self))
+
+
+_NUMBER_CHARS = frozenset("0123456789.+- \t")
+_VALUE_LETTERS = frozenset("XYZABCUVWIJKRFQxyzabcuvwijkrfq")
+
+
+def number_edit(old: str, new: str) -> bool:
+    """Whether ``new`` differs from ``old`` only inside the number of an axis, arc or feed word
+    (``X12.5`` -> ``X12.55``): no dialect guess reads those values."""
+    from cncc.lsp.incremental import changed_range
+
+    prefix, suffix = changed_range(old, new)
+    a, b = old[prefix:len(old) - suffix], new[prefix:len(new) - suffix]
+    if len(a) > 32 or len(b) > 32 or not _NUMBER_CHARS.issuperset(a) or not _NUMBER_CHARS.issuperset(b):
+        return False
+    i = prefix
+    while i > 0 and new[i - 1] in "0123456789.+-":
+        i -= 1
+    return i > 0 and new[i - 1] in _VALUE_LETTERS and " " not in a + b and "\t" not in a + b
 
 
 def files_of(sources: SourceMap | None, index: LineIndex) -> convert.Files:

@@ -36,7 +36,7 @@ def full(text: str, dialect: str = "syntec") -> Analysis:
 
 
 def resumed(old: Analysis, text: str) -> Analysis | None:
-    a = new_analysis(Request("file:///p.nc", "/p.nc", 2, text, old.request.dialect, Settings()))
+    a = new_analysis(Request("file:///p.nc", "/p.nc", 2, text, old.request.dialect, Settings()), old)
     return a if resume(old, a, lambda: None) else None
 
 
@@ -47,6 +47,7 @@ def assert_same(a: Analysis, b: Analysis) -> None:
 
     assert sorted(map(key, a.diagnostics)) == sorted(map(key, b.diagnostics))
     assert a.line_time_s == b.line_time_s
+    assert a.index._starts == b.index._starts
 
 
 def random_edit(rnd: random.Random, text: str) -> str:
@@ -153,3 +154,27 @@ def test_fast_document_changes_like_pygls(encoding: str) -> None:
         ref.apply_change(change)
         fast.apply_change(change)
         assert fast.source == ref.source
+
+
+def test_the_dialect_guess_is_kept_only_across_number_edits() -> None:
+    from cncc.lsp.server import number_edit
+
+    assert number_edit("G1 X1.5 Y2", "G1 X1.55 Y2") and number_edit("F100", "F1000")
+    assert not number_edit("G2 X1", "G21 X1")  # G21 is a mark the guess reads (units + macro B)
+    assert not number_edit("#1=5", "#1=55") and not number_edit("G1 X1.5", "G1 X1.5 1")
+
+
+def test_line_index_after_an_edit_equals_a_fresh_one() -> None:
+    from cncc.lsp.positions import LineIndex
+
+    rnd = random.Random(3)
+    text = "G01 X1.\r\nG02 X2. Y3.\n\nM30\n" * 50
+    index = LineIndex(text)
+    for _ in range(400):
+        a = rnd.randrange(len(text) + 1)
+        b = min(len(text), a + rnd.choice([0, 0, 1, 5, 40]))
+        new = text[:a] + rnd.choice(["", "X", "\n", "7\n8", "\r\n", "\n\n"]) + text[b:]
+        prefix, suffix = changed_range(text, new)
+        index = LineIndex.after_edit(index, new, prefix, suffix)
+        assert index._starts == LineIndex(new)._starts
+        text = new
