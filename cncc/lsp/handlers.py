@@ -16,7 +16,7 @@ from cncc.lsp.analysis import Request, analyze, new_analysis
 from cncc.lsp.complete import complete
 from cncc.lsp.config import open_dialect
 from cncc.lsp.hover import word_hover
-from cncc.lsp.navigate import Outline, Ref, outline, oword_key, program_key
+from cncc.lsp.navigate import Outline, Ref, outline, oword_key, program_key, subroutines
 from cncc.lsp.scan import Comments, token_at, tokens
 from cncc.lsp.server import CnccServer
 from cncc.lsp.subs import named_hover, sub_hover
@@ -70,7 +70,7 @@ def hover(ls: CnccServer, params: lsp.HoverParams) -> lsp.Hover | None:
     sub = oword_key(toks) if toks and tok == toks[0] else None
     if sub is not None or tok.kind == "oname":
         key = sub[0] if sub is not None else tok.text
-        body = sub_hover(index, dialect, outline(text, dialect), key, line)
+        body = sub_hover(index, dialect, subroutines(text), key, line)
     elif tok.kind == "named":
         st = ls.docs.get(uri)
         a = st.analysis if st is not None else None

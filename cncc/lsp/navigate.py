@@ -15,6 +15,7 @@ case) or the number; ``o<square> call`` is a call of one.  The other O-words
 
 from __future__ import annotations
 
+import re
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
@@ -92,6 +93,28 @@ def outline(text: str, dialect: Dialect, check: Callable[[], None] | None = None
         toks = list(tokens(index.line_text(line), base, comments))
         if toks and not _oword(out, toks, index.line_end(line)):
             _line(out, toks, codes)
+    return out
+
+
+_SUB_LINE_RE = re.compile(r"^[ \t]*[Oo][ \t]*(<[^>\n]*>|\d+)[ \t]*(sub|endsub|call)\b", re.IGNORECASE | re.MULTILINE)
+
+
+def subroutines(text: str) -> Outline:
+    """Only the LinuxCNC subroutines and their calls (a regex scan: for hover on big files)."""
+    out = Outline()
+    for m in _SUB_LINE_RE.finditer(text):
+        raw = m.group(1)
+        key = "".join(raw[1:-1].split()).lower() if raw.startswith("<") else str(int(raw))
+        keyword = m.group(2).upper()
+        start = m.start() + m.group(0).lower().index("o")  # the O of the O-word
+        ref = Ref("sub", key, start, m.end(1), keyword.lower())
+        if keyword == "SUB":
+            out.subs.append(ref)
+        elif keyword == "CALL":
+            out.calls.append(ref)
+        else:
+            end = text.find("\n", m.end())
+            out.sub_ends[key] = len(text) if end < 0 else end
     return out
 
 

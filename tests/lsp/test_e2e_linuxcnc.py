@@ -98,3 +98,4 @@ async def test_refused_conversion_says_why(client: LanguageClient) -> None:
     conv = [a for a in acts if a.title.startswith("Convert selection")]
     assert len(conv) == 1 and conv[0].edit is None
     assert conv[0].disabled is not None and "error" in conv[0].disabled.reason
+
