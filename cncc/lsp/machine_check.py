@@ -39,6 +39,7 @@ if TYPE_CHECKING:
     from cncc.ir.trajectory import Trajectory
 
 MAX_REPORTS = 500  # machine diagnostics per document
+LIMITS_CAPPED = "more machine limit violations are not listed"
 VERIFY_KEPT = frozenset({dg.VERIFY_VELOCITY, dg.VERIFY_SOFT_LIMIT})  # verify codes that concern the program
 REL = 1e-9  # relative slack on the limits (floating point)
 TOL_MM = 1e-6
@@ -190,12 +191,15 @@ def without_offsets(found: list[Diagnostic], offsets: str | None) -> list[Diagno
     soft = [d for d in found if d.code == dg.SOFT_LIMIT]
     if not soft:
         return found
-    rest = [d for d in found if d.code != dg.SOFT_LIMIT]
+    capped = any(d.code == dg.ANALYSIS_STOPPED and LIMITS_CAPPED in d.message for d in found)
+    rest = [d for d in found if d.code != dg.SOFT_LIMIT and not (d.code == dg.ANALYSIS_STOPPED
+                                                                  and LIMITS_CAPPED in d.message)]
     why = (f"the work offsets file {offsets!r} cannot be read" if offsets
            else "no work offsets table is configured (offsets = \"offsets.toml\" in cncc.toml)")
     lines = len({d.span.start for d in soft})
     first = min(soft, key=lambda d: (d.span.source_id != 0, d.span.start))
-    message = (f"{lines} move(s) cross the machine's soft limits, the first here ({first.message}); "
+    count = f"more than {lines} moves" if capped else f"{lines} move(s)"
+    message = (f"{count} cross the machine's soft limits, the first here ({first.message}); "
                f"but {why}, so program positions were checked as machine positions")
     return [Diagnostic(dg.NO_OFFSETS_TABLE, Severity.WARNING, first.span, message), *rest]
 
@@ -247,8 +251,7 @@ def limit_diagnostics(traj: Trajectory, cmds: Sequence[Command], machine: Machin
     for (k, code, _axis), (_excess, message) in sorted(worst.items()):
         if len(out) >= MAX_REPORTS:
             out.append(Diagnostic(dg.ANALYSIS_STOPPED, Severity.NOTE, Span(0, 0, 0),
-                                  f"{len(worst) - MAX_REPORTS} more machine limit violations are not listed "
-                                  f"(the first {MAX_REPORTS} are)"))
+                                  f"{len(worst) - MAX_REPORTS} {LIMITS_CAPPED} (the first {MAX_REPORTS} are)"))
             break
         out.append(Diagnostic(code, dg.CODES[code].severity, cmds[k].span, message))
     return out
