@@ -139,6 +139,24 @@ def compare_startup(runs: int = 3) -> None:
           f"CPU of the session: {ca:.2f} s vs {cb:.2f} s -> {ca / cb:.2f}x")
 
 
+def import_times() -> None:
+    """``python -X importtime`` of what ``cncc lsp`` imports before ``initialize`` beside pygls'
+    server module; names any heavy module imported that early."""
+    def total_us(stmt: str, module: str) -> tuple[int, str]:
+        err = subprocess.run([sys.executable, "-X", "importtime", "-c", stmt], capture_output=True,
+                             text=True, check=True).stderr
+        last = [ln for ln in err.splitlines() if ln.rstrip().endswith(f"| {module}")]
+        return (int(last[-1].split("|")[1]) if last else 0), err
+
+    ours, err = total_us("import cncc.lsp.server, cncc.lsp.features", "cncc.lsp.server")
+    theirs, _ = total_us("import pygls.lsp.server", "pygls.lsp.server")
+    early = [m for m in ("numpy", "lark", "cncc.frontend", "cncc.dialects", "cncc.driver", "cncc.passes")
+             if f" {m}\n" in err + "\n" or f"| {m}\n" in err + "\n"]
+    print(f"import before initialize (-X importtime): cncc.lsp.server {ours / 1000:.0f} ms, "
+          f"pygls.lsp.server {theirs / 1000:.0f} ms" + (f"; also imported: {', '.join(early)}" if early else
+                                                          "; no compiler module, numpy or lark"))
+
+
 def full_compile(path: str) -> tuple[float, float]:
     """(wall s, CPU s) of ``cncc -fsyntax-only path``."""
     cpu0 = children_cpu_s()
@@ -232,6 +250,7 @@ def main() -> None:
     sizes = [args.lines] if args.lines else [int(s) for s in args.sizes.split(",") if s]
     print(f"before: {load()}")
     compare_startup()
+    import_times()
     options: dict[str, Any] = {"debounce_ms": 0, "budget_s": 60}
     if args.machine:
         options.update(machine=args.machine, opt_level=args.opt_level)

@@ -74,7 +74,9 @@ def hover(ls: CnccServer, params: lsp.HoverParams) -> lsp.Hover | None:
     elif tok.kind == "named":
         st = ls.docs.get(uri)
         a = st.analysis if st is not None else None
-        body = named_hover(tok.text, tok.start, a.trace if a is not None and a.request.text == text else None)
+        current = a is not None and a.request.text == text
+        body = named_hover(tok.text, tok.start, a.trace if a is not None and current else None,
+                           changed=a is not None and not current)
     elif tok.kind == "var":
         st = ls.docs.get(uri)
         a = st.analysis if st is not None else None

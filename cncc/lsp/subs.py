@@ -77,14 +77,16 @@ def sub_hover(index: LineIndex, dialect: Dialect, out: Outline, key: str, line: 
     return "\n".join(lines)
 
 
-def named_hover(name: str, site: int, trace: VariableTrace | None) -> str:
-    """Markdown for the named parameter ``#<name>`` whose ``#`` is at offset ``site``."""
+def named_hover(name: str, site: int, trace: VariableTrace | None, changed: bool = False) -> str:
+    """Markdown for the named parameter ``#<name>`` whose ``#`` is at offset ``site``
+    (``changed``: the text differs from the one the trace comes from)."""
     from cncc.lsp.variables import traced_text
 
     head = f"#<{name}>"
     scope = "global" if name.startswith("_") else "local to the subroutine (or main program) it is in"
     if trace is None or not trace.ran:
-        return f"**{head}** — named parameter ({scope}); cncc has not run the program yet."
+        when = "the text changed since cncc last ran it" if changed else "cncc has not run the program yet"
+        return f"**{head}** — named parameter ({scope}); {when}."
     seen = trace.at(site)
     if seen is None or not seen.passes:
         return (f"**{head}** — this reference was not reached when cncc ran the program "
