@@ -194,6 +194,8 @@ SOFT_LIMIT = _define("E0703", E, "the trajectory crosses an axis soft limit")
 BAD_PITCH_TABLE = _define("E0704", E, "a pitch-error table would make the axis move backwards; the table is ignored")
 DIR_SETUP_DELAY = _define("W0705", W, "a step was delayed to respect the direction set-up time")
 AXIS_NOT_IN_MACHINE = _define("W0706", W, "a trajectory axis is not in the machine model; default step output used")
+NO_OFFSETS_TABLE = _define("W0775", W, "soft limits crossed while no work offsets table is loaded: program positions "
+                           "were checked as machine positions (one diagnostic for all such moves)")
 
 # --- E08xx: translation (cncc/backends/gcode, --emit=gcode -t) --------------------
 # The N08xx notes say what cncc did because the target cannot (or so the output is

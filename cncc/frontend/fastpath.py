@@ -10,12 +10,17 @@ grammar and the interpreter as usual.
 
 ``tests/frontend/test_fastpath.py`` checks that both paths lower every test program
 and generated programs to identical commands and diagnostics.
+
+With :class:`Checkpoints` (the language server's incremental analysis) the run can
+start at a line with a given interpreter, and it shows the interpreter, its state
+written back, to a callback at the first line at or after every ``every``-th line.
 """
 
 from __future__ import annotations
 
 import re
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
+from dataclasses import dataclass
 
 from cncc.diagnostics import DiagnosticSink
 from cncc.dialects import Dialect
@@ -58,6 +63,21 @@ def _control_codes(dialect: Dialect) -> re.Pattern[str]:
     return pat
 
 
+@dataclass(slots=True)
+class Checkpoints:
+    """Where :func:`lower_straight` starts, and whom it shows its state every ``every`` lines.
+
+    ``on_line(line, offset, it)`` is called at the start of a plain line (0-based ``line`` at
+    character ``offset``) once ``line`` reaches the next multiple of ``every``, before that line
+    runs, with the interpreter's state complete (the fast path's cached state written back)."""
+
+    on_line: Callable[[int, int, Interpreter], None]
+    every: int = 256
+    interp: Interpreter | None = None  # resume with this interpreter ...
+    start: int = 0  # ... at this line start (an offset) ...
+    line: int = 0  # ... which is this 0-based line
+
+
 def is_straight_line(text: str, dialect: Dialect) -> bool:
     """True when the program has no macro syntax, calls or jumps at all, and the
     dialect reads plain blocks the Fanuc way (``fast_path = false`` in a dialect
@@ -77,7 +97,8 @@ def is_straight_line(text: str, dialect: Dialect) -> bool:
 
 
 def lower_straight(  # noqa: C901 - one inlined hot loop: a call per line would cost a third of its time
-    src: SourceFile, dialect: Dialect, sink: DiagnosticSink, opts: InterpOptions
+    src: SourceFile, dialect: Dialect, sink: DiagnosticSink, opts: InterpOptions,
+    checkpoints: Checkpoints | None = None,
 ) -> Iterator[Command]:
     """Lower a straight-line program, taking the fast path where it applies.
 
@@ -85,7 +106,8 @@ def lower_straight(  # noqa: C901 - one inlined hot loop: a call per line would 
     fast path, and written back before any line goes through the general path.
     """
     parser = Parser(dialect, sink, ParseOptions(strict=opts.strict))
-    it = Interpreter(dialect, sink, src.source_id, opts)
+    cp = checkpoints
+    it = cp.interp if cp is not None and cp.interp is not None else Interpreter(dialect, sink, src.source_id, opts)
     text = src.text
     sid = src.source_id
     finditer = CAM_LINES.finditer
@@ -94,8 +116,10 @@ def lower_straight(  # noqa: C901 - one inlined hot loop: a call per line would 
     sp_id, sp_start, sp_end = _SPAN_SET
     l_span, l_frame, l_start, l_end, l_feed, l_motion, l_origin = _LINEAR_SET
     n = len(text)
-    pos = 0
-    line_no = 0
+    pos = cp.start if cp is not None else 0
+    line_no = cp.line if cp is not None else 0
+    next_cp = line_no if cp is not None else n + 1  # the next line to show the state at
+    every = max(1, cp.every) if cp is not None else 1
     stale = True
     dirty = False  # the locals hold modes not yet written back to the interpreter
     feed_prog: float | None = None
@@ -108,7 +132,7 @@ def lower_straight(  # noqa: C901 - one inlined hot loop: a call per line would 
     frame = it.frame
     k_int = k_pt = 1.0
     p = it.pos
-    for m in finditer(text):
+    for m in finditer(text, pos):
         start = m.start()
         if start >= n:
             break
@@ -122,6 +146,15 @@ def lower_straight(  # noqa: C901 - one inlined hot loop: a call per line would 
             line_no += text.count("\n", pos, start)
             pos = start
             stale = True
+        if line_no >= next_cp and cp is not None:
+            if not stale:
+                it.pos = p
+            if dirty:
+                _write_back(it, cur, feed_prog)
+                dirty = False
+            stale = True
+            cp.on_line(line_no, pos, it)
+            next_cp = (line_no // every + 1) * every
         end = m.end()
         line_no += 1
         if stale:

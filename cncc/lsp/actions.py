@@ -4,15 +4,22 @@ Each function returns ``(title, edits)`` with edits as ``(start, end, new_text)`
 character offsets; the server turns them into a ``WorkspaceEdit``.
 
 * **Insert a feed** where a feed move has no F (E0211) or runs on the dialect's
-  default feed (N0212): the last F programmed above, else the dialect default.
+  default feed (N0212): the last positive F programmed above, else the dialect
+  default when it is positive; no action when neither is known (an ``F0`` would
+  only trade one error for another).
 * **Repair an arc centre** (E0208): the arc-check pass's repair (centre moved onto
   the chord's bisector keeping the start radius) written back as I/J/K words.
 * **Convert a selection** to another dialect: the compiled commands of the selected
-  blocks, emitted by the G-code backend for that dialect.
+  blocks, emitted by the G-code backend for that dialect.  Every axis and feed word
+  written in a selected block is written again (the emitter alone would drop a word
+  whose value equals the position it believes in force); a selection with an error
+  in it is refused (:func:`refusal`), since its broken blocks produce no commands
+  and would silently disappear.
 """
 
 from __future__ import annotations
 
+import bisect
 from collections.abc import Sequence
 
 from cncc.dialects import CodeDef, Dialect
@@ -46,7 +53,9 @@ def block_end_offset(index: LineIndex, dialect: Dialect, line: int) -> int:
     return base + len(text[:end].rstrip(" \t;"))
 
 
-def insert_feed(index: LineIndex, dialect: Dialect, offset: int) -> tuple[str, list[Edit]]:
+def insert_feed(index: LineIndex, dialect: Dialect, offset: int) -> tuple[str, list[Edit]] | None:
+    """Append the feed in force above (a positive number) to the block at ``offset``; None
+    when no positive feed is known."""
     line = index.line_of(offset)
     comments = Comments.of(dialect)
     feed: str | None = None
@@ -54,12 +63,15 @@ def insert_feed(index: LineIndex, dialect: Dialect, offset: int) -> tuple[str, l
         text = index.line_text(ln)
         if "F" not in text and "f" not in text:
             continue
-        found = [t for t in tokens(text, 0, comments) if t.kind == "word" and t.text == "F" and t.value]
+        found = [t for t in tokens(text, 0, comments)
+                 if t.kind == "word" and t.text == "F" and (t.number or 0.0) > 0.0]
         if found:
             feed = found[-1].value
             break
     if feed is None:
-        feed = f"{dialect.default_feed_mm_min:g}"
+        if dialect.default_feed_mm_min <= 0.0:
+            return None
+        feed = number_text(dialect.default_feed_mm_min, 1)
     at = block_end_offset(index, dialect, line)
     return f"Insert feed F{feed}", [(at, at, f" F{feed}")]
 
@@ -115,7 +127,6 @@ def convert_selection(index: LineIndex, commands: Sequence[Command], first_line:
     writes absolute coordinates, so under G91 the selection starts with the target's G90),
     and after the selection the target's codes restore the modes the document has in force
     there (the selection's own G91, say)."""
-    from cncc.backends.gcode import emit_gcode
     from cncc.lsp.complete import modal_context
 
     lo = index.line_start(first_line)
@@ -123,7 +134,8 @@ def convert_selection(index: LineIndex, commands: Sequence[Command], first_line:
     chosen = [c for c in commands if lo <= c.span.start < hi or (c.span.start <= lo < c.span.end)]
     if not chosen:
         return None
-    lines = [ln.rstrip("\n") for ln in emit_gcode(chosen, target) if ln.strip() != "%"]
+    lines = [ln.rstrip("\n") for ln in _emit(chosen, target, explicit_words(index, source, first_line, last_line))
+             if ln.strip() != "%"]
     state = {g: c.op for g, c in modal_context(index, source, first_line).items()}
     at = next((i for i, ln in enumerate(lines) if _mode_words(ln, target, only=True)), None)
     if at is not None:
@@ -145,6 +157,54 @@ def convert_selection(index: LineIndex, commands: Sequence[Command], first_line:
     if restore:
         lines.append(" ".join(restore))
     return f"Convert selection to {target.name} ({target.title})", [(lo, hi, "\n".join(lines))]
+
+
+def refusal(errors: Sequence[tuple[int, str]], lo: int, hi: int) -> str | None:
+    """Why a selection ``lo..hi`` (offsets) cannot be converted: the first error in it, given
+    as (offset, message) pairs; None when it has none."""
+    for at, message in sorted(errors):
+        if lo <= at <= hi:
+            return f"the selection has an error (converting it would drop that block): {message}"
+    return None
+
+
+def explicit_words(index: LineIndex, dialect: Dialect, first_line: int, last_line: int
+                   ) -> dict[int, frozenset[str]]:
+    """Line start offset -> the axis and feed letters written on that line."""
+    comments = Comments.of(dialect)
+    out: dict[int, frozenset[str]] = {}
+    for line in range(first_line, last_line + 1):
+        letters = frozenset(t.text for t in tokens(index.line_text(line), 0, comments)
+                            if t.kind == "word" and t.value and t.text in "XYZABCF")
+        if letters:
+            out[index.line_start(line)] = letters
+    return out
+
+
+def _emit(cmds: Sequence[Command], target: Dialect, explicit: dict[int, frozenset[str]]) -> list[str]:
+    """The emitter's lines for ``cmds``, writing again every axis and feed word that the source
+    block of a command wrote (``explicit``: by the offset of the block's line)."""
+    from cncc.backends.gcode.emit import AXES, GcodeEmitter
+    from cncc.ir import Vec6
+
+    starts = sorted(explicit)
+
+    def written(em: GcodeEmitter) -> frozenset[str]:
+        at = bisect.bisect_right(starts, em.span.start) - 1
+        return explicit[starts[at]] if at >= 0 and em.span.source_id == 0 else frozenset()
+
+    class KeepWords(GcodeEmitter):
+        def _axes(self, start: Vec6, end: Vec6, always: tuple[int, ...] = ()) -> list[str]:
+            keep = written(self)
+            forced = tuple(i for i, letter in enumerate(AXES) if letter in keep)
+            return super()._axes(start, end, tuple(sorted({*always, *forced})))
+
+        def _feed_word(self, feed_mm_min: float) -> str:
+            if "F" in written(self):
+                self.feed = None
+            return super()._feed_word(feed_mm_min)
+
+    return list(KeepWords(target).emit(cmds))
 
 
 _MODE_GROUPS = frozenset({"plane", "units", "distance", "feed_mode"})

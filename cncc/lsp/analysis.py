@@ -30,6 +30,7 @@ from cncc.lsp.trace import VariableTrace
 from cncc.source import SourceMap, Span
 
 if TYPE_CHECKING:
+    from cncc.lsp.incremental import Memory, Shifts
     from cncc.lsp.machine_check import MachineCheck
 
 CHECK_EVERY = 256  # commands between two budget checks
@@ -65,6 +66,18 @@ class Analysis:
     reached: int = 0  # offset of the last command seen
     elapsed_s: float = 0.0
     sink: DiagnosticSink = field(default_factory=lambda: DiagnosticSink(max_count=5000))
+    memory: Memory | None = None  # checkpoints for the incremental analysis of the next edit
+    shifts: Shifts = field(default_factory=lambda: _no_shifts())  # offsets of ``commands`` not yet moved
+    resumed: tuple[int, int] | None = None  # lines re-run by an incremental analysis (else a full run)
+    region: tuple[int, int, int] | None = None  # its offsets: start, end in the new text, end in the old
+
+    def commands_between(self, lo: int, hi: int) -> list[Command]:
+        """The commands that start in ``lo..hi`` (offsets), spans where the text has them."""
+        from cncc.lsp.incremental import first_at, materialize
+
+        i = first_at(self.commands, self.shifts, lo)
+        j = first_at(self.commands, self.shifts, hi + 1)
+        return materialize(self.commands, self.shifts, max(0, i - 1), j)
 
     @property
     def text(self) -> str:
@@ -75,7 +88,20 @@ class Analysis:
         return self.request.version
 
 
-def new_analysis(req: Request) -> Analysis:
+def _no_shifts() -> Shifts:
+    from cncc.lsp.incremental import Shifts
+
+    return Shifts()
+
+
+def new_analysis(req: Request, previous: Analysis | None = None) -> Analysis:
+    """A fresh analysis of ``req``; its line index is derived from ``previous`` (the analysis
+    of an earlier version of the same document) when there is one."""
+    if previous is not None and previous.request.uri == req.uri:
+        from cncc.lsp.incremental import changed_range
+
+        prefix, suffix = changed_range(previous.text, req.text)
+        return Analysis(req, LineIndex.after_edit(previous.index, req.text, prefix, suffix))
     return Analysis(req, LineIndex(req.text))
 
 
@@ -110,8 +136,12 @@ def _compile(a: Analysis, check: Callable[[], None]) -> None:
         return
     a.trace = VariableTrace()
     a.sources = SourceMap()
-    _collect(a, compile_commands(req, a.dialect, a.machine, a.sources, sink, machine_coords=False, trace=a.trace),
-             check)
+    if not settings.target:
+        from cncc.lsp.incremental import Memory
+
+        a.memory = Memory()
+    _collect(a, compile_commands(req, a.dialect, a.machine, a.sources, sink, machine_coords=False, trace=a.trace,
+                                 memory=a.memory), check)
 
 
 def _machine(settings: Settings, dialect: Dialect, sink: DiagnosticSink) -> MachineModel:

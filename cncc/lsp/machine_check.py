@@ -22,8 +22,9 @@ it found before; ``result.step`` says where it stopped.
 
 from __future__ import annotations
 
+import re
 from collections.abc import Callable, Iterator, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING, Any
 
 from cncc import diagnostics as dg
@@ -38,6 +39,7 @@ if TYPE_CHECKING:
     from cncc.ir.trajectory import Trajectory
 
 MAX_REPORTS = 500  # machine diagnostics per document
+LIMITS_CAPPED = "more machine limit violations are not listed"
 VERIFY_KEPT = frozenset({dg.VERIFY_VELOCITY, dg.VERIFY_SOFT_LIMIT})  # verify codes that concern the program
 REL = 1e-9  # relative slack on the limits (floating point)
 TOL_MM = 1e-6
@@ -90,6 +92,7 @@ def machine_phase(a: Analysis, out: MachineCheck, check: Callable[[], None]) -> 
             return
     out.diagnostics.extend(_new(sink, a.diagnostics))
     covered: set[Span] = set()
+    blind = False  # soft limits checked without the work offsets
     if configured:
         check()
         out.step = "checking limits"
@@ -97,6 +100,9 @@ def machine_phase(a: Analysis, out: MachineCheck, check: Callable[[], None]) -> 
         check()
         found = limit_diagnostics(nominal, cmds, machine)
         covered = {d.span for d in found}
+        blind = offsets_missing(settings, a.text, found)
+        if blind:
+            found = without_offsets(found, settings.offsets)
         out.diagnostics.extend(found)
     level = max(0, min(3, settings.opt_level))
     traj = nominal if configured and level == 0 else None
@@ -117,8 +123,85 @@ def machine_phase(a: Analysis, out: MachineCheck, check: Callable[[], None]) -> 
     if configured and traj is not None:
         check()
         out.step = "verifying the trajectory"
-        out.diagnostics.extend(verify_diagnostics(traj, cmds, machine, level, covered))
+        checked = verify_diagnostics(traj, cmds, machine, level, covered)
+        if blind:  # the soft limits were summed up above
+            checked = [d for d in checked if d.code != dg.VERIFY_SOFT_LIMIT]
+        out.diagnostics.extend(checked)
     out.step = "done"
+
+
+_WORK_RE = re.compile(r"G[ \t]*0*5[4-9](?:\.[1-9])?(?![\d.])", re.IGNORECASE)
+
+
+MANY_CROSSINGS = 10  # more moves than this beyond the limits, and no offsets table: a missing table
+
+
+def region_first(a: Analysis, old: Analysis, check: Callable[[], None]) -> MachineCheck | None:
+    """The machine checks of an incremental analysis, quickly: the old second phase's
+    diagnostics outside the re-run region (shifted), and the soft limits, step rates and axis
+    speeds of the region's own moves (its first-phase commands taken to machine coordinates by
+    the frame passes).  None when there is nothing to start from (the full phase follows
+    anyway and replaces this)."""
+    from cncc import driver
+    from cncc.passes import PassContext, run_pipeline
+
+    prev = old.machine_check
+    if (a.region is None or prev is None or prev.stopped or a.machine is None or a.dialect is None
+            or not a.request.settings.machine
+            or any(d.code in (dg.NO_OFFSETS_TABLE, dg.ANALYSIS_STOPPED) for d in prev.diagnostics)):
+        return None
+    lo, hi_new, hi_old = a.region
+    delta = hi_new - hi_old
+    kept = []
+    for d in prev.diagnostics:
+        s = d.span
+        if s.source_id != 0 or s.start < lo:
+            kept.append(d)
+        elif s.start >= hi_old:
+            kept.append(replace(d, span=Span(0, s.start + delta, s.end + delta)))
+    check()
+    cmds = [c for c in a.commands_between(lo, hi_new) if lo <= c.span.start < hi_new]
+    if cmds:
+        ctx = PassContext(sink=DiagnosticSink(), dialect=a.dialect, machine=a.machine)
+        moved = list(run_pipeline(driver.frame_passes(a.dialect, machine_coords=True), iter(cmds), ctx))
+        check()
+        traj, _ = driver.plan_trajectory(moved, a.machine, 0, DiagnosticSink())
+        kept += limit_diagnostics(traj, moved, a.machine)
+    return MachineCheck(diagnostics=kept, step="the changed region")
+
+
+def offsets_missing(settings: Any, text: str, found: Sequence[Diagnostic]) -> bool:
+    """Whether the soft-limit checks lack the work offsets: a configured offsets file cannot be
+    read; or none is configured while the program selects a work system (G54 ... G59.x) or
+    more than :data:`MANY_CROSSINGS` moves cross the limits (a CAM program's coordinates are
+    work coordinates: taken as machine positions, nearly every block crosses)."""
+    import os
+
+    if settings.offsets:
+        return not os.path.isfile(settings.path(settings.offsets))
+    if _WORK_RE.search(text) is not None:
+        return True
+    return len({d.span.start for d in found if d.code == dg.SOFT_LIMIT}) > MANY_CROSSINGS
+
+
+def without_offsets(found: list[Diagnostic], offsets: str | None) -> list[Diagnostic]:
+    """``found`` with its soft-limit diagnostics replaced by one warning (W0775) on the first:
+    without a work offsets table every G54 ... position is a machine position, so a program
+    written for a fixture offset crosses the limits on nearly every block."""
+    soft = [d for d in found if d.code == dg.SOFT_LIMIT]
+    if not soft:
+        return found
+    capped = any(d.code == dg.ANALYSIS_STOPPED and LIMITS_CAPPED in d.message for d in found)
+    rest = [d for d in found if d.code != dg.SOFT_LIMIT and not (d.code == dg.ANALYSIS_STOPPED
+                                                                  and LIMITS_CAPPED in d.message)]
+    why = (f"the work offsets file {offsets!r} cannot be read" if offsets
+           else "no work offsets table is configured (offsets = \"offsets.toml\" in cncc.toml)")
+    lines = len({d.span.start for d in soft})
+    first = min(soft, key=lambda d: (d.span.source_id != 0, d.span.start))
+    count = f"more than {lines} moves" if capped else f"{lines} move(s)"
+    message = (f"{count} cross the machine's soft limits, the first here ({first.message}); "
+               f"but {why}, so program positions were checked as machine positions")
+    return [Diagnostic(dg.NO_OFFSETS_TABLE, Severity.WARNING, first.span, message), *rest]
 
 
 def _new(sink: DiagnosticSink, seen: Sequence[Diagnostic]) -> list[Diagnostic]:
@@ -168,8 +251,7 @@ def limit_diagnostics(traj: Trajectory, cmds: Sequence[Command], machine: Machin
     for (k, code, _axis), (_excess, message) in sorted(worst.items()):
         if len(out) >= MAX_REPORTS:
             out.append(Diagnostic(dg.ANALYSIS_STOPPED, Severity.NOTE, Span(0, 0, 0),
-                                  f"{len(worst) - MAX_REPORTS} more machine limit violations are not listed "
-                                  f"(the first {MAX_REPORTS} are)"))
+                                  f"{len(worst) - MAX_REPORTS} {LIMITS_CAPPED} (the first {MAX_REPORTS} are)"))
             break
         out.append(Diagnostic(code, dg.CODES[code].severity, cmds[k].span, message))
     return out

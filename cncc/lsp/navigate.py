@@ -6,10 +6,16 @@ Consumes the document text and its dialect; produces an :class:`Outline`: the
 all with offsets.  Definition and references are lookups in it.  Program keys are
 normalised so that ``O0010``, ``O10`` and ``P10`` meet; named programs (SZGH
 ``M98 PKG11``) are keyed by their upper-cased name.
+
+LinuxCNC subroutines (``o<square> sub`` ... ``o<square> endsub``, ``o100 sub``) are
+``"sub"`` references keyed by the name as LinuxCNC reads it (blanks removed, lower
+case) or the number; ``o<square> call`` is a call of one.  The other O-words
+(``o101 if``, ``o102 while`` ...) are flow labels, not programs.
 """
 
 from __future__ import annotations
 
+import re
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
@@ -18,11 +24,13 @@ from cncc.lsp.positions import LineIndex
 from cncc.lsp.scan import Comments, Token, tokens
 
 CALL_OPS = {"subprogram_call", "macro_call", "modal_call", "subprogram_return"}
+O_KEYWORDS = frozenset({"SUB", "ENDSUB", "CALL", "RETURN", "IF", "ELSEIF", "ELSE", "ENDIF", "WHILE", "ENDWHILE",
+                        "DO", "REPEAT", "ENDREPEAT", "BREAK", "CONTINUE"})
 
 
 @dataclass(frozen=True, slots=True)
 class Ref:
-    kind: str  # "program" or "label"
+    kind: str  # "program", "label" or "sub" (a LinuxCNC subroutine)
     key: str  # normalised program key or label number
     start: int
     end: int
@@ -36,16 +44,21 @@ class Outline:
     calls: list[Ref] = field(default_factory=list)
     tools: list[tuple[int, int, int, str]] = field(default_factory=list)  # (start, end, tool, text)
     program_ends: list[int] = field(default_factory=list)  # offsets of M02/M30
+    subs: list[Ref] = field(default_factory=list)  # LinuxCNC ``o<name> sub``
+    sub_ends: dict[str, int] = field(default_factory=dict)  # key -> offset just past its endsub line
 
     def at(self, offset: int) -> Ref | None:
-        for ref in (*self.calls, *self.labels, *self.programs):
+        for ref in (*self.calls, *self.labels, *self.programs, *self.subs):
             if ref.start <= offset <= ref.end:
                 return ref
         return None
 
     def definitions(self, ref: Ref) -> list[Ref]:
-        pool = self.programs if ref.kind == "program" else self.labels
+        pool = {"program": self.programs, "label": self.labels, "sub": self.subs}[ref.kind]
         return [r for r in pool if r.key == ref.key]
+
+    def definitions_of(self, kind: str, key: str) -> list[Ref]:
+        return self.definitions(Ref(kind, key, 0, 0, ""))
 
     def references(self, ref: Ref, include_definition: bool) -> list[Ref]:
         out = [r for r in self.calls if r.kind == ref.kind and r.key == ref.key]
@@ -78,9 +91,58 @@ def outline(text: str, dialect: Dialect, check: Callable[[], None] | None = None
             check()
         base = index.line_start(line)
         toks = list(tokens(index.line_text(line), base, comments))
-        if toks:
+        if toks and not _oword(out, toks, index.line_end(line)):
             _line(out, toks, codes)
     return out
+
+
+_SUB_LINE_RE = re.compile(r"^[ \t]*[Oo][ \t]*(<[^>\n]*>|\d+)[ \t]*(sub|endsub|call)\b", re.IGNORECASE | re.MULTILINE)
+
+
+def subroutines(text: str) -> Outline:
+    """Only the LinuxCNC subroutines and their calls (a regex scan: for hover on big files)."""
+    out = Outline()
+    for m in _SUB_LINE_RE.finditer(text):
+        raw = m.group(1)
+        key = "".join(raw[1:-1].split()).lower() if raw.startswith("<") else str(int(raw))
+        keyword = m.group(2).upper()
+        start = m.start() + m.group(0).lower().index("o")  # the O of the O-word
+        ref = Ref("sub", key, start, m.end(1), keyword.lower())
+        if keyword == "SUB":
+            out.subs.append(ref)
+        elif keyword == "CALL":
+            out.calls.append(ref)
+        else:
+            end = text.find("\n", m.end())
+            out.sub_ends[key] = len(text) if end < 0 else end
+    return out
+
+
+def oword_key(toks: list[Token]) -> tuple[str, str] | None:
+    """(key, keyword) of a LinuxCNC O-word line (``o<square> call``, ``o100 sub``), else None."""
+    first = toks[0]
+    if len(toks) < 2 or toks[1].kind != "keyword" or toks[1].text not in O_KEYWORDS:
+        return None
+    if first.kind == "oname":
+        return first.text, toks[1].text
+    if first.kind == "word" and first.text == "O" and first.value.isdigit():
+        return str(int(first.value)), toks[1].text
+    return None
+
+
+def _oword(out: Outline, toks: list[Token], line_end: int) -> bool:
+    found = oword_key(toks)
+    if found is None:
+        return False
+    key, keyword = found
+    first = toks[0]
+    if keyword == "SUB":
+        out.subs.append(Ref("sub", key, first.start, first.end, "sub"))
+    elif keyword == "ENDSUB":
+        out.sub_ends[key] = line_end
+    elif keyword == "CALL":
+        out.calls.append(Ref("sub", key, first.start, first.end, "call"))
+    return True
 
 
 def _line(out: Outline, toks: list[Token], codes: dict[tuple[str, int], str]) -> None:

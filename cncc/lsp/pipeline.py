@@ -29,7 +29,9 @@ from cncc.source import SourceMap
 
 if TYPE_CHECKING:
     from cncc.driver import Options
+    from cncc.frontend import InterpOptions
     from cncc.lsp.analysis import Request
+    from cncc.lsp.incremental import Memory
     from cncc.lsp.trace import VariableTrace
 
 
@@ -48,24 +50,44 @@ def compile_options(req: Request, dialect: Dialect) -> Options:
                           dialect_options=dict(settings.dialect_options))
 
 
+def interp_options(opts: Options, machine: MachineModel, sink: DiagnosticSink) -> InterpOptions:
+    """The interpreter's tables (work offsets, tool lengths and radii, reference points)."""
+    from cncc import driver
+    from cncc.frontend import InterpOptions
+
+    work, lengths, radii = driver.load_tables(opts, sink)
+    refs = tuple(tuple(r) + (0.0,) * (6 - len(r)) for r in machine.reference_positions_mm) or ((0.0,) * 6,)
+    return InterpOptions(work_offsets_mm=work, tool_lengths_mm=lengths, tool_radii_mm=radii,
+                         reference_mm=refs, block_delete=opts.block_delete,  # type: ignore[arg-type]
+                         strict=opts.strict)
+
+
 def compile_commands(req: Request, dialect: Dialect, machine: MachineModel, sources: SourceMap,
                      sink: DiagnosticSink, machine_coords: bool,
-                     trace: VariableTrace | None = None) -> Iterator[Command]:
+                     trace: VariableTrace | None = None, memory: Memory | None = None) -> Iterator[Command]:
     """The document's commands after the path passes; in machine coordinates for the planner
-    when ``machine_coords``."""
+    when ``machine_coords``.  With ``memory`` (program coordinates only), a straight-line
+    program keeps interpreter checkpoints there for :mod:`cncc.lsp.incremental`."""
     from cncc import driver
-    from cncc.frontend import InterpOptions, lower
+    from cncc.frontend import lower
 
     src = sources.add(req.path or req.uri, req.text)
     opts = compile_options(req, dialect)
-    work, lengths, radii = driver.load_tables(opts, sink)
-    refs = tuple(tuple(r) + (0.0,) * (6 - len(r)) for r in machine.reference_positions_mm) or ((0.0,) * 6,)
-    iopts = InterpOptions(work_offsets_mm=work, tool_lengths_mm=lengths, tool_radii_mm=radii,
-                          reference_mm=refs, block_delete=opts.block_delete,  # type: ignore[arg-type]
-                          strict=opts.strict)
+    iopts = interp_options(opts, machine, sink)
     macro = driver.macro_options(opts, sink, sources)
     macro.trace = trace
-    cmds = lower(src, dialect, sink, iopts, macro)
+    if memory is not None and not machine_coords:
+        from cncc.lsp.incremental import eligible, keep_checkpoints
+
+        if eligible(req.text, dialect):
+            return _split(keep_checkpoints(src, dialect, sink, iopts, memory), dialect, machine, opts, sink, memory)
+        memory.light = False
+    if trace is not None and dialect.macro_flavour == "linuxcnc":
+        from cncc.lsp.linuxcnc_trace import lower_traced
+
+        cmds = lower_traced(src, dialect, sink, iopts, macro, trace)
+    else:
+        cmds = lower(src, dialect, sink, iopts, macro)
     if machine_coords:
         opts.emit = "timing"  # a backend that reads machine coordinates: offsets and tool lengths applied
         return driver.path_passes(cmds, dialect, machine, opts, sink)
@@ -79,7 +101,7 @@ def transforms(frame: Frame) -> bool:
 
 
 def _split(cmds: Iterable[Command], dialect: Dialect, machine: MachineModel, opts: Options,
-           sink: DiagnosticSink) -> Iterator[Command]:
+           sink: DiagnosticSink, memory: Memory | None = None) -> Iterator[Command]:
     """Commands through the light pipeline until a frame needs the frame passes, then the
     rest (from that command on) through the driver's whole pipeline."""
     from cncc import driver
@@ -98,8 +120,10 @@ def _split(cmds: Iterable[Command], dialect: Dialect, machine: MachineModel, opt
                 checked.add(id(f))
             yield c
 
-    yield from _light_passes(plain(), dialect, machine, opts, sink)
+    yield from light_passes(plain(), dialect, machine, opts, sink, memory)
     if first:
+        if memory is not None:
+            memory.light = False
         yield from driver.path_passes(_chain(first, it), dialect, machine, opts, sink)
 
 
@@ -108,9 +132,10 @@ def _chain(head: list[Command], rest: Iterator[Command]) -> Iterator[Command]:
     yield from rest
 
 
-def _light_passes(cmds: Iterable[Command], dialect: Dialect, machine: MachineModel, opts: Options,
-                  sink: DiagnosticSink) -> Iterator[Command]:
-    """``driver.path_passes`` without the frame passes (same cycle expansion and arc check)."""
+def light_passes(cmds: Iterable[Command], dialect: Dialect, machine: MachineModel, opts: Options,
+                 sink: DiagnosticSink, memory: Memory | None = None) -> Iterator[Command]:
+    """``driver.path_passes`` without the frame passes (same cycle expansion and arc check);
+    ``memory``: see :func:`_relink`."""
     from cncc.passes import PassContext, run_pipeline
     from cncc.passes.arc_check import ArcCheck
     from cncc.passes.expand_cycles import ExpandCycles
@@ -120,15 +145,16 @@ def _light_passes(cmds: Iterable[Command], dialect: Dialect, machine: MachineMod
     tol_rel = float(dialect.option("arc_radius_tolerance_rel", ArcCheck.rel_tol))
     arc_check = ArcCheck(abs_tol_mm=max(tol_abs, ArcCheck.abs_tol_mm), rel_tol=tol_rel, repair=opts.repair_arcs)
     expanded = run_pipeline([ExpandCycles()], cmds, ctx)
-    return arc_check.run(_relink(expanded), ctx)
+    return arc_check.run(_relink(expanded, memory), ctx)
 
 
-def _relink(cmds: Iterable[Command]) -> Iterator[Command]:
+def _relink(cmds: Iterable[Command], memory: Memory | None = None) -> Iterator[Command]:
     """Each motion starts where the previous one ended (what the frame passes do to commands
-    whose frames transform nothing); positions compared in program + offset coordinates."""
+    whose frames transform nothing); positions compared in program + offset coordinates.
+    With ``memory``, it starts from ``memory.last`` and keeps it up to date."""
     from cncc.ir import Arc, Linear, Rapid
 
-    last: tuple[float, ...] | None = None
+    last: tuple[float, ...] | None = memory.last if memory is not None else None
     for c in cmds:
         if not isinstance(c, Rapid | Linear | Arc):
             yield c
@@ -147,4 +173,6 @@ def _relink(cmds: Iterable[Command]) -> Iterator[Command]:
         o = f.total_offset_mm
         e = c.end
         last = (e[0] + o[0], e[1] + o[1], e[2] + o[2], e[3] + o[3], e[4] + o[4], e[5] + o[5])
+        if memory is not None:
+            memory.last = last
         yield c

@@ -9,6 +9,7 @@ the only place that converts; everything inside the server works on offsets.
 from __future__ import annotations
 
 import bisect
+from itertools import accumulate
 
 
 class LineIndex:
@@ -23,13 +24,32 @@ class LineIndex:
     def __init__(self, text: str, encoding: str = "utf-16") -> None:
         self.text = text
         self.encoding = encoding
-        starts = [0]
-        find = text.find
-        i = find("\n")
-        while i >= 0:
-            starts.append(i + 1)
-            i = find("\n", i + 1)
+        # running sums of the line lengths (+1 for each newline), all in C
+        starts = list(accumulate(map((1).__add__, map(len, text.split("\n"))), initial=0))
+        starts.pop()
         self._starts = starts
+
+    @classmethod
+    def after_edit(cls, old: LineIndex, text: str, prefix: int, suffix: int) -> LineIndex:
+        """The index of ``text``, which equals ``old.text`` but for the characters between its
+        first ``prefix`` and last ``suffix`` ones: the old line starts are kept (shifted after
+        the change) and only the changed part is scanned."""
+        new = cls.__new__(cls)
+        new.text = text
+        new.encoding = old.encoding
+        starts = old._starts
+        keep = bisect.bisect_right(starts, prefix)
+        end_new = len(text) - suffix
+        region = []
+        i = text.find("\n", prefix, end_new)
+        while i >= 0:
+            region.append(i + 1)
+            i = text.find("\n", i + 1, end_new)
+        tail = bisect.bisect_left(starts, len(old.text) - suffix + 1)
+        delta = len(text) - len(old.text)
+        moved = starts[tail:] if delta == 0 else [s + delta for s in starts[tail:]]
+        new._starts = starts[:keep] + region + moved
+        return new
 
     @property
     def line_count(self) -> int:

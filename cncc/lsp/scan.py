@@ -3,7 +3,9 @@
 Editor features need to know what is under the cursor and where labels and calls
 are, also on lines the compiler rejects.  This scanner reads one line at a time,
 skips the dialect's comments, and yields the address words (letter + number),
-keywords (``GOTO``, ``WHILE`` ...) and variables (``#100``) with their offsets.  It
+keywords (``GOTO``, ``WHILE``, LinuxCNC's ``sub``/``call`` ...), variables (``#100``),
+LinuxCNC named parameters (``#<depth>``) and named O-words (``o<square>``) with
+their offsets.  It
 never fails; anything it does not recognise is skipped.
 """
 
@@ -15,10 +17,13 @@ from dataclasses import dataclass
 
 from cncc.dialects import Dialect, code_tenths
 
-_KEYWORDS = ("GOTO|THEN|WHILE|ENDIF|ELIF|ELSE|END|IF|DO|EQ|NE|GT|GE|LT|LE|AND|XOR|OR|MOD|ASIN|ACOS|ATAN|SIN|COS|"
+_KEYWORDS = ("ENDSUB|ENDWHILE|ENDREPEAT|REPEAT|RETURN|ELSEIF|SUB|CALL|BREAK|CONTINUE|"
+             "GOTO|THEN|WHILE|ENDIF|ELIF|ELSE|END|IF|DO|EQ|NE|GT|GE|LT|LE|AND|XOR|OR|MOD|ASIN|ACOS|ATAN|SIN|COS|"
              "TAN|SQRT|ABS|ROUND|FIX|FUP|LN|EXP|BIN|BCD|POW|WAT|OUT|MSG|STAF|FILE[A-Z]*")
 _TOKEN_RE = re.compile(
     r"(?P<var>#\s*(?P<varnum>\d+))"
+    r"|(?P<named>#[ \t]*<(?P<pname_>[^>]*)>)"
+    r"|(?P<oname>[Oo][ \t]*<(?P<oname_>[^>]*)>)"
     rf"|(?P<kw>(?i:{_KEYWORDS}))(?![A-Za-z])"
     r"|(?P<bare>\d+\.?\d*)"
     r"|(?P<pname>[Pp])(?P<name>[A-Za-z_][\w/]*)"
@@ -28,8 +33,9 @@ _TOKEN_RE = re.compile(
 
 @dataclass(frozen=True, slots=True)
 class Token:
-    kind: str  # "word", "keyword", "var", "number" (after a keyword: GOTO 5, DO 1)
-    text: str  # letter (word), keyword upper-cased, variable number (var)
+    kind: str  # "word", "keyword", "var", "named", "oname", "number" (after a keyword: GOTO 5, DO 1)
+    text: str  # letter (word), keyword upper-cased, variable number (var), name (named: ``#<name>``,
+    # oname: LinuxCNC ``o<name>``) in LinuxCNC's form: blanks removed, lower case
     value: str  # number text of a word ("" when the letter has no value); keyword: ""
     start: int  # absolute offsets in the document
     end: int
@@ -94,6 +100,10 @@ def tokens(line: str, base: int, comments: Comments) -> Iterator[Token]:
         for m in _TOKEN_RE.finditer(line, lo, hi):
             if m.group("var"):
                 yield Token("var", m.group("varnum"), "", base + m.start(), base + m.end())
+            elif m.group("named"):
+                yield Token("named", _name(m.group("pname_")), "", base + m.start(), base + m.end())
+            elif m.group("oname"):
+                yield Token("oname", _name(m.group("oname_")), "", base + m.start(), base + m.end())
             elif m.group("kw"):
                 yield Token("keyword", m.group("kw").upper(), "", base + m.start(), base + m.end())
             elif m.group("bare"):
@@ -103,6 +113,11 @@ def tokens(line: str, base: int, comments: Comments) -> Iterator[Token]:
             else:
                 value = m.group("num") or ""
                 yield Token("word", m.group("letter").upper(), value.strip(), base + m.start(), base + m.end())
+
+
+def _name(inner: str) -> str:
+    """LinuxCNC ignores blanks and case in ``#<names>`` and ``o<names>``."""
+    return "".join(inner.split()).lower()
 
 
 def token_at(line: str, base: int, offset: int, comments: Comments) -> Token | None:

@@ -18,28 +18,38 @@ from __future__ import annotations
 
 import asyncio
 import contextlib
+import logging
 import os
+import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, TypeVar
+from typing import TYPE_CHECKING, Any, TypeVar
 from urllib.parse import unquote, urlparse
 
 from lsprotocol import types as lsp
 from pygls.lsp.server import LanguageServer
 
 from cncc import __version__
-from cncc import diagnostics as dg
-from cncc.dialects import Dialect, DialectError
-from cncc.lsp import convert
-from cncc.lsp.analysis import Analysis, Request, analyze, new_analysis
-from cncc.lsp.config import Settings, find_config, guess_dialect, open_dialect, read_config
 from cncc.lsp.guard import Gate, Job
-from cncc.lsp.machine_check import MachineCheck, machine_phase, wanted, warm_up
 from cncc.lsp.positions import LineIndex
-from cncc.source import SourceMap, Span
+
+if TYPE_CHECKING:  # the compiler side is imported on first use (or by the warm-up thread)
+    from cncc.dialects import Dialect
+    from cncc.lsp import convert
+    from cncc.lsp.analysis import Analysis
+    from cncc.lsp.config import Settings
+    from cncc.source import SourceMap
 
 T = TypeVar("T")
+_log = logging.getLogger(__name__)
+GUESS_HEAD_CHARS = 200_000  # what cncc.lsp.config.guess_dialect reads of a document (its sample)
+
+WARM_UP_MODULES = ("cncc.lsp.handlers", "cncc.lsp.analysis", "cncc.lsp.machine_check", "cncc.frontend",
+                   "cncc.frontend.fastpath", "cncc.frontend.macro.executor", "cncc.passes.expand_cycles",
+                   "cncc.passes.arc_check", "cncc.backends.nominal", "cncc.driver")
+"""What the first analysis needs, imported in a background thread once the client has said
+``initialized`` (numpy and the planner are left to the second phase's own warm-up)."""
 
 
 @dataclass(slots=True)
@@ -58,11 +68,25 @@ class DocState:
 class CnccServer(LanguageServer):
     def __init__(self) -> None:
         super().__init__("cncc", __version__, text_document_sync_kind=lsp.TextDocumentSyncKind.Incremental)
-        self.settings = Settings()
         self.client_settings: dict[str, Any] = {}
+        self._guesses: dict[str, tuple[Settings, str, str]] = {}  # uri -> (settings, text head, dialect)
         self.docs: dict[str, DocState] = {}
         self.root: str | None = None
         self.gate = Gate()  # background jobs wait while a first phase runs
+
+    def warm_up(self) -> None:
+        """Import the compiler side in a daemon thread (the first analysis then starts at once);
+        an import that fails is left to the request that needs it, which reports it."""
+        import threading
+
+        def work() -> None:
+            import importlib
+
+            for name in WARM_UP_MODULES:
+                with contextlib.suppress(Exception):
+                    importlib.import_module(name)
+
+        threading.Thread(target=work, name="cncc-lsp-warm-up", daemon=True).start()
 
     # ---- settings and dialects
     def doc_path(self, uri: str) -> str:
@@ -70,6 +94,8 @@ class CnccServer(LanguageServer):
         return unquote(parsed.path) if parsed.scheme == "file" else ""
 
     def settings_for(self, uri: str) -> tuple[Settings, str | None]:
+        from cncc.lsp.config import Settings, find_config, read_config
+
         path = self.doc_path(uri)
         settings = Settings(root=self.root or "")
         error = None
@@ -83,15 +109,28 @@ class CnccServer(LanguageServer):
         return settings, error
 
     def dialect_name(self, uri: str, text: str, settings: Settings) -> str:
-        return guess_dialect(self.doc_path(uri) or uri, text, settings.dialect)
+        """The document's dialect (:func:`cncc.lsp.config.guess_dialect`); the guess reads the
+        head of the text only, so it is kept until that head or the settings change."""
+        from cncc.lsp.config import guess_dialect
+
+        head = text[:GUESS_HEAD_CHARS]
+        got = self._guesses.get(uri)
+        if got is not None and got[0] == settings and (got[1] == head or number_edit(got[1], head)):
+            self._guesses[uri] = (settings, head, got[2])
+            return got[2]
+        name = guess_dialect(self.doc_path(uri) or uri, text, settings.dialect)
+        if len(text) > GUESS_HEAD_CHARS:
+            self._guesses[uri] = (settings, head, name)
+        return name
 
     def dialect_of(self, uri: str, text: str) -> Dialect:
+        from cncc.dialects import DialectError
+        from cncc.lsp.config import DEFAULT_DIALECT, Settings, open_dialect
+
         settings, _ = self.settings_for(uri)
         try:
             return open_dialect(self.dialect_name(uri, text, settings), settings)
         except DialectError:
-            from cncc.lsp.config import DEFAULT_DIALECT
-
             return open_dialect(DEFAULT_DIALECT, Settings())
 
     # ---- analyses
@@ -121,15 +160,42 @@ class CnccServer(LanguageServer):
             st.machine_job = None
 
     async def _debounced(self, uri: str) -> None:
+        t_change = time.perf_counter()
+        from cncc import diagnostics as dg
+        from cncc.lsp.analysis import Request, analyze, new_analysis
+        from cncc.lsp.incremental import resume
+        from cncc.lsp.machine_check import wanted
+
+        def incremental(old: Analysis, a: Analysis, check: Callable[[], None]) -> bool:
+            try:
+                return resume(old, a, check)
+            except Exception:  # a bug in the resume must not cost the diagnostics: run in full
+                import logging
+
+                logging.getLogger(__name__).exception("incremental analysis failed; running in full")
+                a.dialect = a.machine = None
+                return False
+        from cncc.source import Span
+
         settings, error = self.settings_for(uri)
         await asyncio.sleep(settings.debounce_ms / 1000.0)
         doc = self.workspace.get_text_document(uri)
         text = doc.source
         st = self.state(uri)
         req = Request(uri, self.doc_path(uri), st.version, text, self.dialect_name(uri, text, settings), settings)
-        a = new_analysis(req)
+        t_req = time.perf_counter()
+        before = st.analysis if st.analysis is not None and st.analysis.request.uri == uri else None
+        a = new_analysis(req, before)
         a.index.encoding = _encoding(self)
-        job = Job(lambda check: analyze(a, check), settings.budget_s, gate=self.gate)
+        marks = [t_req, time.perf_counter()]
+
+        def work(check: Callable[[], None]) -> None:
+            marks.append(time.perf_counter())
+            if before is None or not incremental(before, a, check):
+                analyze(a, check)
+            marks.append(time.perf_counter())
+
+        job = Job(work, settings.budget_s, gate=self.gate)
         st.job = job.start()
         try:
             reason = await asyncio.wrap_future(job.future)
@@ -150,11 +216,36 @@ class CnccServer(LanguageServer):
         st.analysis = a
         st.ready.set()
         self.publish(a)
+        _log.info("%s v%s: %s in %.1f ms (%.1f ms since the change; steps %s)", uri, req.version,
+                  f"lines {a.resumed[0] + 1}-{a.resumed[1]} re-run" if a.resumed else "full analysis",
+                  a.elapsed_s * 1000, (time.perf_counter() - t_change) * 1000,
+                  " ".join(f"{(t - t_change) * 1000:.1f}" for t in marks))
         if wanted(a):
-            st.machine_task = asyncio.ensure_future(self._machine_phase(uri, a))
+            st.machine_task = asyncio.ensure_future(self._machine_phase(uri, a, before))
 
-    async def _machine_phase(self, uri: str, a: Analysis) -> None:
+    async def _machine_phase(self, uri: str, a: Analysis, before: Analysis | None = None) -> None:
+        from cncc import diagnostics as dg
+        from cncc.lsp.machine_check import MachineCheck, machine_phase, region_first, warm_up
+        from cncc.source import Span
+
         st = self.state(uri)
+        if before is not None and a.region is not None:  # the changed region's checks first
+            box: list[MachineCheck | None] = []
+            quick = Job(lambda check: box.append(region_first(a, before, check)), a.request.settings.budget_s,
+                        gate=self.gate, background=True, prelude=warm_up).start()
+            st.machine_job = quick
+            try:
+                reason = await asyncio.wrap_future(quick.future)
+            except asyncio.CancelledError:
+                quick.cancel(grace_s=0.0)
+                raise
+            except Exception:  # a bug in the quick step: the full phase below still runs
+                reason = "failed"
+            if st.analysis is not a or reason == "cancelled":
+                return
+            if reason is None and box and box[0] is not None:
+                a.machine_check = box[0]
+                self.publish(a)
         m = MachineCheck()
         job = Job(lambda check: machine_phase(a, m, check), a.request.settings.budget_s, gate=self.gate,
                   background=True, prelude=warm_up)
@@ -180,6 +271,10 @@ class CnccServer(LanguageServer):
         self.publish(a)
 
     def publish(self, a: Analysis) -> None:
+        from cncc import diagnostics as dg
+        from cncc.lsp import convert
+        from cncc.source import Span
+
         settings = a.request.settings
         index, uri = a.index, a.request.uri
         items = convert.diagnostics(index, uri, a.diagnostics, settings.max_diagnostics, files_of(a.sources, index))
@@ -224,6 +319,25 @@ class CnccServer(LanguageServer):
     def text_and_index(self, uri: str) -> tuple[str, LineIndex]:
         text = self.workspace.get_text_document(uri).source
         return text, LineIndex(text, _encoding(self))
+
+
+_NUMBER_CHARS = frozenset("0123456789.+- \t")
+_VALUE_LETTERS = frozenset("XYZABCUVWIJKRFQxyzabcuvwijkrfq")
+
+
+def number_edit(old: str, new: str) -> bool:
+    """Whether ``new`` differs from ``old`` only inside the number of an axis, arc or feed word
+    (``X12.5`` -> ``X12.55``): no dialect guess reads those values."""
+    from cncc.lsp.incremental import changed_range
+
+    prefix, suffix = changed_range(old, new)
+    a, b = old[prefix:len(old) - suffix], new[prefix:len(new) - suffix]
+    if len(a) > 32 or len(b) > 32 or not _NUMBER_CHARS.issuperset(a) or not _NUMBER_CHARS.issuperset(b):
+        return False
+    i = prefix
+    while i > 0 and new[i - 1] in "0123456789.+-":
+        i -= 1
+    return i > 0 and new[i - 1] in _VALUE_LETTERS and " " not in a + b and "\t" not in a + b
 
 
 def files_of(sources: SourceMap | None, index: LineIndex) -> convert.Files:

@@ -80,6 +80,15 @@ class VariableTrace:
                 seen = sites[at] = Seen()
             seen.add(read(n))
 
+    def record(self, at: int, value: float | None) -> None:
+        """One pass of the reference whose ``#`` is at offset ``at`` saw ``value``."""
+        seen = self.sites.get(at)
+        if seen is None:
+            if len(self.sites) >= self.max_sites:
+                return
+            seen = self.sites[at] = Seen()
+        seen.add(value)
+
     def at(self, offset: int) -> Seen | None:
         return self.sites.get(offset)
 

@@ -51,9 +51,10 @@ def hover_variable(text: str, index: LineIndex, dialect: Dialect, number: int, s
     return variable_value(text, index, dialect, number, site)
 
 
-def traced_text(number: int, seen: Seen) -> str:
-    """What a reference saw during the run, in words."""
-    head = f"**#{number}**"
+def traced_text(number: int | str, seen: Seen) -> str:
+    """What a reference saw during the run, in words (``number``: 5 for ``#5``, or a
+    variable's text such as ``#<depth>``)."""
+    head = f"**#{number}**" if isinstance(number, int) else f"**{number}**"
     if seen.values == 0:
         return f"{head} is vacant here" + (f" (on all {seen.passes} passes)" if seen.passes > 1 else "") + "."
     last = "vacant" if seen.last is None else f"{seen.last:g}"

@@ -147,7 +147,7 @@ async def test_insert_missing_feed(client: LanguageClient) -> None:
     feed = [a for a in acts if a.title.startswith("Insert feed")]
     assert len(feed) == 1
     new = apply(text, edits_of(feed[0], uri))
-    assert new.split("\n")[1] == "G01 X10. F1000 (cut) ;"  # syntec's default feed (1000 mm/min)
+    assert new.split("\n")[1] == "G01 X10. F1000. (cut) ;"  # syntec's default feed (1000 mm/min)
     v2 = await replace_all(client, uri, text, new)
     assert not any(d.code in ("N0212", "E0211") for d in await diags(client, uri, v2))
 
