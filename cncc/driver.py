@@ -182,8 +182,12 @@ def front_end(src: SourceFile, dialect: Dialect, machine: MachineModel, opts: Op
 
     work, lengths, radii = load_tables(opts, sink)
     refs = tuple(tuple(r) + (0.0,) * (6 - len(r)) for r in machine.reference_positions_mm) or ((0.0,) * 6,)
+    from cncc.dialects import code_tenths
+
+    m_codes = {code_tenths(name[1:]): (m.meaning or "machine function") for name, m in machine.m_codes}
     iopts = InterpOptions(work_offsets_mm=work, tool_lengths_mm=lengths, tool_radii_mm=radii,
-                          reference_mm=refs, block_delete=opts.block_delete, strict=opts.strict)  # type: ignore[arg-type]
+                          reference_mm=refs, block_delete=opts.block_delete, strict=opts.strict,  # type: ignore[arg-type]
+                          machine_m_codes=m_codes)
     return lower(src, dialect, sink, iopts, macro_options(opts, sink, sources, deps))
 
 

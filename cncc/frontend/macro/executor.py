@@ -57,6 +57,7 @@ from cncc.source import NO_SPAN, SourceFile, Span
 EXEC_OPS = frozenset({
     "subprogram_call", "subprogram_return", "macro_call", "modal_call", "modal_call_off", "block_loop",
     "block_loop_end", "jump", "user_macro", "input_wait_on", "input_wait_off", "program_restart",
+    "local_call",
 })
 """Ops the executor handles itself instead of the interpreter."""
 
