@@ -334,11 +334,15 @@ def frame_passes(dialect: Dialect, machine_coords: bool, keep_transforms: frozen
 
 
 def guessed_dialect(src: SourceFile, opts: Options, sink: DiagnosticSink) -> Dialect | None:
-    from cncc.frontend.detect import guess_dialect
+    from cncc.frontend.detect import detect, numbers_warning
 
-    name, why = guess_dialect(src.name, src.text)
+    found = detect(src.name, src.text)
+    name, why = found.dialect, found.explain()
     if opts.verbose:
         sink.emit(dg.DIALECT_GUESSED, Span(src.source_id, 0, 0), f"dialect {name} ({why}); -x selects another")
+    warning = numbers_warning(found, src.text)
+    if warning is not None:
+        sink.emit(dg.GUESS_CHANGES_NUMBERS, Span(src.source_id, 0, 0), warning)
     return resolve_dialect(Options(dialect=name, dialect_options=opts.dialect_options), sink)
 
 

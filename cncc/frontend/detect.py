@@ -191,4 +191,39 @@ def integer_length_word(text: str) -> str | None:
     return None if m is None else f"{m.group(1).upper()}{m.group(2)}"
 
 
-__all__ = ["DEFAULT", "Detection", "Evidence", "detect", "guess_dialect", "integer_length_word", "views"]
+CONFIDENT_SCORE = 6
+CONFIDENT_MARGIN = 4
+
+
+def numbers_warning(found: Detection, text: str) -> str | None:
+    """A warning when the guess decides what integers mean and the evidence is weak.
+
+    Under a least-input-unit dialect ``X10`` is 0.010 mm; under grbl, LinuxCNC or Haas
+    it is 10 mm.  When the program has such integers, the guessed dialect reads them in
+    least input units, and the guess is not confident (a score below
+    :data:`CONFIDENT_SCORE`, or within :data:`CONFIDENT_MARGIN` of a dialect that reads
+    them as whole units), say so without ``-v``.
+    """
+    try:
+        chosen = load_dialect(found.dialect)
+    except DialectError:
+        return None
+    if chosen.decimal_rule != "liu":
+        return None
+    word = integer_length_word(text)
+    if word is None:
+        return None
+    whole = [(n, s) for n, s in found.scores.items() if load_dialect(n).decimal_rule != "liu"]
+    rival = max(whole, key=lambda ns: (ns[1], -_tie_rank(ns[0]))) if whole else None
+    margin = found.score - rival[1] if rival is not None else CONFIDENT_SCORE
+    if found.score >= CONFIDENT_SCORE and margin >= CONFIDENT_MARGIN:
+        return None
+    unit = chosen.liu.get("length_mm", 0.001)
+    value = float(word[1:]) * unit
+    other = f"; -x {rival[0]} reads it as {word[1:]} mm" if rival is not None else ""
+    return (f"the dialect was guessed as {found.dialect} (score {found.score}), which reads integers in least "
+            f"input units: {word} is {value:.3f} mm{other}; give -x to choose")
+
+
+__all__ = ["CONFIDENT_MARGIN", "CONFIDENT_SCORE", "DEFAULT", "Detection", "Evidence", "detect", "guess_dialect",
+           "integer_length_word", "numbers_warning", "views"]

@@ -108,6 +108,7 @@ class Executor:
         self.vars = Variables(layout_for(dialect))
         self.io = IoState(dict(options.io_inputs))
         self.sys = MachineVariables(interp, self.flavour, self.io, self._control)
+        self.sys.warn = self._unknown_system_variable
         self.vars.system = self.sys
         self.ev = Evaluator(self.vars)
         exts = tuple(dict.fromkeys((*dialect.extensions, ".nc", "")))
@@ -377,6 +378,10 @@ class Executor:
             raise MacroError(dg.MACRO_ALARM, f"alarm {3000 + number}" + (f": {text}" if text else ""))
         self.out.append(Message(span, self.it.frame, text or f"stop {number}", pause=True))
         self.emit(dg.MACRO_STOP_MESSAGE, span, f"program stop with message{': ' + text if text else ''}")
+
+    def _unknown_system_variable(self, message: str) -> None:
+        span = (Span(self.it.source_id, self.block.start, self.block.end) if self.block is not None else NO_SPAN)
+        self.emit(dg.UNKNOWN_SYSTEM_VARIABLE, span, message)
 
     def end_program(self, span: Span) -> None:
         """M99 in a main program (``m99_in_main = "end"``): end as M02 does."""
