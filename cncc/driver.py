@@ -216,7 +216,8 @@ def macro_options(opts: Options, sink: DiagnosticSink, sources: SourceMap | None
     return MacroOptions(presets=dict(opts.defines), include_dirs=include, max_steps=opts.max_steps,
                         io_inputs=io, write_dir=opts.write_dir, load_source=load, protected_paths=protected,
                         files_used=deps if deps is not None else [],
-                        call_markers=opts.keep_subprograms and opts.emit == "gcode" and not opts.expand)
+                        call_markers=opts.keep_subprograms and opts.emit == "gcode" and not opts.expand,
+                        run_files=tuple(opts.inputs))
 
 
 def dialect_library(opts: Options) -> tuple[str, ...]:

@@ -82,6 +82,8 @@ class MacroOptions:
     # SetMode("call_begin"/"call_end", (program key, name)) around every run of a called program
     # (translation --keep-subprograms); off: no marker reaches the IR
     call_markers: bool = False
+    # the other input files of the run: their O programs can be called (a main and its library)
+    run_files: tuple[str, ...] = ()
 
 
 def layout_for(dialect: Dialect) -> VariableLayout:
@@ -114,6 +116,7 @@ class Executor:
         exts = tuple(dict.fromkeys((*dialect.extensions, ".nc", "")))
         self.library = ProgramLibrary(parse, sink, options.include_dirs, exts, options.load_source)
         self.library.files_used = options.files_used
+        self.library.run_files = options.run_files
         self.stack: list[CallFrame] = []
         self.steps = 0
         self.stopped = False
