@@ -268,6 +268,7 @@ class Parser:
         self._family = dialect.grammar
         self._abbreviated = abbreviations(dialect)
         # ISO tape format: ':1000' is the program number O1000 (one character for one)
+        self._command = str(dialect.raw.get("system_command_prefix", ""))  # grbl '$H': not G-code
         self._o_marks = tuple(str(m) for m in dialect.raw.get("program_number_marks", []) if len(str(m)) == 1)
 
     def blocks(self, src: SourceFile) -> Iterator[sx.Block]:
@@ -294,6 +295,12 @@ class Parser:
             return
         if not line.isascii():
             line = self._fullwidth(src, line, pos)
+        if self._command and line.lstrip().startswith(self._command):
+            lead = len(line) - len(line.lstrip())
+            text = line.strip()
+            yield sx.Block(line_no, pos, pos + len(line.rstrip("\r")), (),
+                           (sx.CommentItem(text, pos + lead, pos + lead + len(text)),))
+            return
         if self._o_marks and line.lstrip()[:1] in self._o_marks:
             lead = len(line) - len(line.lstrip())
             line = line[:lead] + "O" + line[lead + 1:]
