@@ -10,6 +10,9 @@ the reason, and the view of the program it searches).  The views are
   headers, post-processor names);
 * ``name``     — the file name.
 
+A rule may list ``needs``: literals one of which must occur in the view (a cheap
+pre-check before the regular expression, for the rules large CAM files never match).
+
 A rule counts once, however often it matches.  On top of the rules, every dialect
 loses a point per G code the program uses that its table does not define (at most
 three): the *code set* evidence.  The dialect with the most points wins; a tie goes
@@ -46,8 +49,13 @@ class Rule:
     why: str
     also: re.Pattern[str] | None = None  # must match too
     unless: re.Pattern[str] | None = None  # must not match
+    needs: tuple[str, ...] = ()  # upper-case literals one of which must occur (a cheap pre-check)
 
     def matches(self, seen: dict[str, str]) -> bool:
+        if self.needs:
+            upper = seen.get(self.view + ":upper", "")
+            if not any(n in upper for n in self.needs):
+                return False
         text = seen.get(self.view, "")
         if self.pattern.search(text) is None:
             return False
@@ -126,8 +134,9 @@ def _rules() -> tuple[tuple[Rule, ...], dict[str, dict[str, int]]]:
             main = pattern("pattern")
             if main is None:
                 raise DialectError(f"{d.name}.toml: detect.rule without a pattern")
+            needs = tuple(str(n).upper() for n in entry.get("needs", []))
             rules.append(Rule(d.name, str(entry.get("view", "code")), main, int(str(entry["points"])),
-                              str(entry["why"]), pattern("also"), pattern("unless")))
+                              str(entry["why"]), pattern("also"), pattern("unless"), needs))
     return tuple(rules), exts
 
 
@@ -136,7 +145,10 @@ def views(name: str, text: str) -> dict[str, str]:
     head = text[:_SCAN_CHARS]
     comments = [m.group(0) for m in _PAREN.finditer(head)]
     comments += [m.group(1) for m in _SEMI_LINE.finditer(head)]
-    return {"code": _PAREN.sub(" ", head), "comments": "\n".join(comments), "name": name}
+    out = {"code": _PAREN.sub(" ", head), "comments": "\n".join(comments), "name": name}
+    for key in list(out):
+        out[key + ":upper"] = out[key].upper()
+    return out
 
 
 def _code_set(code: str) -> set[int]:
