@@ -309,3 +309,13 @@ def test_missing_offset_with_a_tool_table_is_reported_per_word() -> None:
     r = compile_text("G21 G90\nG43 H1 Z10.\nG43 H7 Z10.\nG43 H8 Z5.\nM30\n", dialect="fanuc", emit="none",
                      tools_file=TOOLS)
     assert [d.message.split()[0] for d in r.sink if d.code == "W0513"] == ["H7", "H8"]
+
+
+def test_text_after_the_closing_percent_is_not_read() -> None:
+    """ISO/EIA tape format: the '%' after the program ends the tape; a DNC trailer after it
+    is not part of the program."""
+    text = "%\nO1000\nG21 G90\nG01 X1. F100.\nM30\n%\nTRAILER TEXT 123\n"
+    for dialect in ("fanuc", "haas"):
+        lines, r = canon(text, dialect)
+        assert errors(r) == [], dialect
+    assert "E0108" in errors(compile_text(text, dialect="syntec", emit="none"))  # no such rule there

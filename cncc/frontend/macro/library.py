@@ -94,7 +94,10 @@ def run_library(src: SourceFile, dialect: Dialect, sink: DiagnosticSink, options
     for typical in (False, True):
         private = DiagnosticSink(werror=sink.werror)
         interp = Interpreter(dialect, private, src.source_id, copy.deepcopy(options))
-        ex = Executor(dialect, private, interp, copy.copy(macro), parse_with(private))
+        mopts = copy.copy(macro)
+        if typical:  # the editor's variable trace shows the program as it stands, not invented arguments
+            mopts.trace = None
+        ex = Executor(dialect, private, interp, mopts, parse_with(private))
         if typical:
             for n, v in typical_arguments(ex).items():
                 ex.vars.write(n, v)
