@@ -194,11 +194,11 @@ def guess_dialect(name: str, text: str) -> tuple[str, str]:
     return d.dialect, d.explain()
 
 
-_INTEGER_LENGTH = re.compile(r"(?<![A-Z#\[])([XYZ])\s*(-?\d+)(?![\d.])", re.I)
+_INTEGER_LENGTH = re.compile(r"(?<![A-Z#\[])([XYZ])\s*(-?0*[1-9]\d*)(?![\d.])", re.I)  # X0 is 0 under every rule
 
 
 def integer_length_word(text: str) -> str | None:
-    """The first axis word written without a decimal point (``X10``), or None."""
+    """The first non-zero axis word written without a decimal point (``X10``), or None."""
     m = _INTEGER_LENGTH.search(_PAREN.sub(" ", text[:_SCAN_CHARS]))
     return None if m is None else f"{m.group(1).upper()}{m.group(2)}"
 

@@ -291,6 +291,10 @@ def test_weak_guess_that_changes_numbers_warns(tmp_path: Path, capsys: pytest.Ca
     assert "W0271" in err and "0.010 mm" in err
     main(["-x", "syntec", "--emit=none", str(p)])
     assert "W0271" not in capsys.readouterr().err
+    z = tmp_path / "zeros.nc"  # X0 is 0 under every rule: nothing to warn about
+    z.write_text("G91 G28 Z0\nG90 G0 X0 Y0\nG1 X12.5 F100\nM30\n")
+    main(["--emit=none", str(z)])
+    assert "W0271" not in capsys.readouterr().err
     q = tmp_path / "sure.nc"  # strong SYNTEC evidence: no warning
     q.write_text("G71 G90 // metric\nG134 X0 Y0 I20. J0 K6 // holes\nG0 X10 Y20\nM30\n")
     main(["--emit=none", str(q)])
