@@ -89,7 +89,7 @@ class Detection:
 
     def explain(self) -> str:
         """One line for ``-v``: the winner's evidence, then the runner-up's score."""
-        if not any(e.points for e in self.evidence):
+        if not any(e.points > 0 for e in self.evidence):
             return "nothing dialect-specific found; the default"
         mine = [e for e in self.evidence if e.dialect == self.dialect]
         parts = [f"{e.why} {e.points:+d}" for e in mine]
