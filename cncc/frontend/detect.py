@@ -8,7 +8,9 @@ the reason, and the view of the program it searches).  The views are
   inside a CamBam comment (``http://``) is no ``//`` comment;
 * ``comments`` — the text of the ``( ... )`` comments and ``;`` comment lines (CAM
   headers, post-processor names);
-* ``name``     — the file name.
+* ``name``     — the file name;
+* ``text``     — the head of the text as it is (round brackets that are not comments:
+  SZGH's ``IF (#1 GT 0)``).
 
 A rule may list ``needs``: literals one of which must occur in the view (a cheap
 pre-check before the regular expression, for the rules large CAM files never match).
@@ -145,7 +147,7 @@ def views(name: str, text: str) -> dict[str, str]:
     head = text[:_SCAN_CHARS]
     comments = [m.group(0) for m in _PAREN.finditer(head)]
     comments += [m.group(1) for m in _SEMI_LINE.finditer(head)]
-    out = {"code": _PAREN.sub(" ", head), "comments": "\n".join(comments), "name": name}
+    out = {"code": _PAREN.sub(" ", head), "comments": "\n".join(comments), "name": name, "text": head}
     for key in list(out):
         out[key + ":upper"] = out[key].upper()
     return out

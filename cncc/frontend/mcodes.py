@@ -6,7 +6,7 @@ dialect table does not list is not an error there; the dialect option
 ``unknown_m_code`` says what the control does with it:
 
 * ``"machine"`` — passed to the machine: an :class:`~cncc.ir.Aux` command, and a
-  warning (W0270) unless the machine model lists the code (``[[m_codes]]`` in a machine
+  warning (W0270, once per code and program) unless the machine model lists the code (``[[m_codes]]`` in a machine
   file, with its meaning and the seconds it takes, which the timing report counts);
 * ``"error"`` (the default) — the control rejects it (grbl, LinuxCNC, SZGH): E0202.
 
@@ -17,6 +17,7 @@ Handlers registered here: ``aux`` (an M code with no modelled effect), ``smoothi
 
 from __future__ import annotations
 
+import weakref
 from dataclasses import replace
 from typing import TYPE_CHECKING
 
@@ -33,6 +34,9 @@ EXTENDED_WORK_BASE = 6
 """G54.1 P1 / G154 P1 is work system 7 (after G54-G59), as Haas's G110 is."""
 
 
+_WARNED: weakref.WeakKeyDictionary[Interpreter, set[int]] = weakref.WeakKeyDictionary()
+
+
 def passes_to_machine(dialect: Dialect) -> bool:
     return str(dialect.option("unknown_m_code", "error")) == "machine"
 
@@ -44,7 +48,9 @@ def machine_m_code(it: Interpreter, w: Word, tenths: int) -> CodeDef | None:
     if known is None and not passes_to_machine(it.dialect):
         return None
     name = code_name("M", tenths)
-    if known is None:
+    warned = _WARNED.setdefault(it, set())
+    if known is None and tenths not in warned:  # once per code and program
+        warned.add(tenths)
         it.sink.emit(dg.M_CODE_TO_MACHINE, it.word_span(w),
                      f"{name} is not a {it.dialect.name} code; the control passes it to the machine "
                      f"(list it in the machine model's [[m_codes]] to say what it does)")

@@ -258,6 +258,9 @@ def test_dialect_base_merges_by_code() -> None:
     ("a.nc", "%\nO01001 (PART)\n(MACHINE)\n(  VENDOR HAAS AUTOMATION)\nG20 G90\nG187 P3\nM30\n%\n", "haas"),
     ("a.nc", "%\n:1000\nG21 G90\nG01 X1. F100.\nM30\n%\n", "fanuc"),
     ("a.nc", "O9000\n#1=0\nWH[#1LT5]DO1\n#1=#1+1\nEN1\nM99\n", "fanuc"),
+    # SZGH accepts round brackets in conditions (spec 3.8); SERIES 8's compact blocks with ';' text
+    ("a.nc", "#5=0\nN2 IF (#5 GE 3) GOTO 9\nG00 X[#5*10.]\n#5=#5+1\nGOTO 2\nN9 M30\n", "szgh"),
+    ("a.nc", "G00X0Y0 ; to the corner\nF12 ; slow\nG01X3.Y0 ; along X\nM30\n", "series8"),
 ])
 def test_detection_scores_evidence(name: str, text: str, want: str) -> None:
     assert guess_dialect(name, text)[0] == want, detect(name, text).explain()
