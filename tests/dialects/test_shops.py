@@ -59,9 +59,9 @@ def test_abbreviation_is_not_read_where_the_dialect_has_none() -> None:
 # ---- M codes the machine handles --------------------------------------------------------------
 def test_unknown_m_code_goes_to_the_machine_on_fanuc() -> None:
     """Fanuc: an M code the CNC does not use itself is sent to the PMC (ladder): no alarm."""
-    cmds, r = compile_commands("G21\nM262\nM10\nG0 X1.\nM30\n", dialect="fanuc")
-    assert errors(r) == [] and codes(r).count("W0270") == 2
-    assert [c.code for c in cmds if isinstance(c, Aux)] == [2620, 100]
+    cmds, r = compile_commands("G21\nM262\nM10\nG0 X1.\nM10\nM30\n", dialect="fanuc")
+    assert errors(r) == [] and codes(r).count("W0270") == 2  # once per code and program
+    assert [c.code for c in cmds if isinstance(c, Aux)] == [2620, 100, 100]
 
 
 def test_m_code_policy_is_a_dialect_option() -> None:
