@@ -16,31 +16,11 @@ from cncc.frontend.interp import InterpOptions, Interpreter
 from cncc.frontend.macro import MacroOptions, needs_executor, run_program
 from cncc.frontend.macro.remap import remaps_cycles
 from cncc.frontend.parser import ParseOptions, Parser
+from cncc.frontend.tape import before_tape_end
 from cncc.ir import Command
 from cncc.source import SourceFile
 
 __all__ = ["InterpOptions", "Interpreter", "MacroOptions", "ParseOptions", "Parser", "before_tape_end", "lower"]
-
-
-def before_tape_end(src: SourceFile) -> SourceFile:
-    """The program up to its closing ``%`` (ISO/EIA tape format: a ``%`` line after the
-    first block ends the tape, and the control reads nothing after it).  Offsets are
-    unchanged (the text is cut, not moved)."""
-    text = src.text
-    pos, seen_block = 0, False
-    n = len(text)
-    while pos < n:
-        nl = text.find("\n", pos)
-        end = n if nl < 0 else nl
-        line = text[pos:end].strip()
-        if line == "%" and seen_block:
-            if text[end:].strip():
-                return SourceFile(src.source_id, src.name, text[:end])
-            return src
-        if line and line != "%":
-            seen_block = True
-        pos = end + 1
-    return src
 
 
 def lower(src: SourceFile, dialect: Dialect, sink: DiagnosticSink,

@@ -326,3 +326,13 @@ def test_text_after_the_closing_percent_is_not_read() -> None:
         lines, r = canon(text, dialect)
         assert errors(r) == [] and any("STRAIGHT_FEED(1.0000" in ln for ln in lines), dialect
     assert "E0108" in errors(compile_text(text, dialect="syntec", emit="none"))  # no such rule there
+
+
+def test_concatenated_tapes_are_kept_and_called_files_end_at_their_percent(tmp_path: Path) -> None:
+    """Two tapes in one file (% ... % % ... %) are both read; a called program file with a
+    DNC trailer after its closing '%' is read up to the '%'."""
+    both = "%\nO1\nG21 G90\nM98 P2\nM30\n%\n%\nO2\nG01 X4. F100.\nM99\n%\n"
+    assert moves(both, "fanuc") == [("STRAIGHT_FEED", (4.0, 0.0, 0.0))]
+    (tmp_path / "O0003.nc").write_text("%\nO0003\nG01 X7. F100.\nM99\n%\nSENT BY DNC 2024-05-01\n")
+    got = moves("O1\nG21 G90\nM98 P3\nM30\n", "fanuc", include_dirs=[str(tmp_path)])
+    assert got == [("STRAIGHT_FEED", (7.0, 0.0, 0.0))]

@@ -59,6 +59,10 @@ def run_program(src: SourceFile, dialect: Dialect, sink: DiagnosticSink, options
 
     def parse_with(into: DiagnosticSink) -> Callable[[SourceFile], list[Block]]:
         parser = Parser(dialect, into, ParseOptions(strict=options.strict))
+        if dialect.raw.get("tape_end"):  # called program files end at their closing '%' too
+            from cncc.frontend.tape import before_tape_end
+
+            return lambda source: list(parser.blocks(before_tape_end(source)))
         return lambda source: list(parser.blocks(source))
 
     if dialect.macro_flavour == "fanuc" and is_library(src.text):  # called programs: unknown arguments
