@@ -101,9 +101,8 @@ GUESS_CHANGES_NUMBERS = _define("W0271", W, "the guessed dialect reads integers 
                                 "-x confirms the dialect")
 UNKNOWN_SYSTEM_VARIABLE = _define("W0370", W, "a system variable the dialect's table does not list (read vacant, write "
                                   "ignored)")
-DEPENDS_ON_ARGUMENTS = _define("N0371", N, "a problem of a macro library linted without a caller that only some "
-                               "arguments cause")
-CALLER_MODAL_STATE = _define("N0372", N, "a subprogram file relies on modal state (F ...) its caller sets")
+DEPENDS_ON_ARGUMENTS = _define("N0371", N, "a problem of a macro library or subprogram file linted without a caller "
+                               "that depends on its arguments or modal state (F ...)")
 
 # --- E04xx: canned cycles and hole patterns ----------------------------------------
 CYCLE_NO_R = _define("E0401", E, "a drilling block without an R level")
