@@ -95,6 +95,15 @@ CORNER_INSERT = _define("E0257", E, "a G10 corner that cannot be inserted (next 
 CAVITY_BAD_WORD = _define("E0258", E, "a SERIES 8 G34-G36 cavity that cannot be milled (size, step-over, depth per "
                           "pass or tool radius missing or out of range)")
 
+# --- shops (issue 23): real programs from real shops (band x70-x74) -------------------
+M_CODE_TO_MACHINE = _define("W0270", W, "an M code the dialect does not define is passed to the machine (PMC/ladder)")
+GUESS_CHANGES_NUMBERS = _define("W0271", W, "the guessed dialect reads integers in least input units (X10 = 0.010 mm); "
+                                "-x confirms the dialect")
+UNKNOWN_SYSTEM_VARIABLE = _define("W0370", W, "a system variable the dialect's table does not list (read vacant, write "
+                                  "ignored)")
+DEPENDS_ON_ARGUMENTS = _define("N0371", N, "a problem of a macro library or subprogram file linted without a caller "
+                               "that depends on its arguments or modal state (F ...)")
+
 # --- E04xx: canned cycles and hole patterns ----------------------------------------
 CYCLE_NO_R = _define("E0401", E, "a drilling block without an R level")
 CYCLE_NO_BOTTOM = _define("E0402", E, "a drilling block without a hole bottom (Z)")

@@ -209,8 +209,12 @@ def front_end(src: SourceFile, dialect: Dialect, machine: MachineModel, opts: Op
 
     work, lengths, radii = load_tables(opts, sink)
     refs = tuple(tuple(r) + (0.0,) * (6 - len(r)) for r in machine.reference_positions_mm) or ((0.0,) * 6,)
+    from cncc.dialects import code_tenths
+
+    m_codes = {code_tenths(name[1:]): (m.meaning or "machine function") for name, m in machine.m_codes}
     iopts = InterpOptions(work_offsets_mm=work, tool_lengths_mm=lengths, tool_radii_mm=radii,
-                          reference_mm=refs, block_delete=opts.block_delete, strict=opts.strict)  # type: ignore[arg-type]
+                          reference_mm=refs, block_delete=opts.block_delete, strict=opts.strict,  # type: ignore[arg-type]
+                          machine_m_codes=m_codes)
     return lower(src, dialect, sink, iopts, macro_options(opts, sink, sources, deps))
 
 
@@ -239,7 +243,8 @@ def macro_options(opts: Options, sink: DiagnosticSink, sources: SourceMap | None
     return MacroOptions(presets=dict(opts.defines), include_dirs=include, max_steps=opts.max_steps,
                         io_inputs=io, write_dir=opts.write_dir, load_source=load, protected_paths=protected,
                         files_used=deps if deps is not None else [],
-                        call_markers=opts.keep_subprograms and opts.emit == "gcode" and not opts.expand)
+                        call_markers=opts.keep_subprograms and opts.emit == "gcode" and not opts.expand,
+                        run_files=tuple(opts.inputs))
 
 
 def dialect_library(opts: Options) -> tuple[str, ...]:
@@ -357,11 +362,15 @@ def frame_passes(dialect: Dialect, machine_coords: bool, keep_transforms: frozen
 
 
 def guessed_dialect(src: SourceFile, opts: Options, sink: DiagnosticSink) -> Dialect | None:
-    from cncc.frontend.detect import guess_dialect
+    from cncc.frontend.detect import detect, numbers_warning
 
-    name, why = guess_dialect(src.name, src.text)
+    found = detect(src.name, src.text)
+    name, why = found.dialect, found.explain()
     if opts.verbose:
         sink.emit(dg.DIALECT_GUESSED, Span(src.source_id, 0, 0), f"dialect {name} ({why}); -x selects another")
+    warning = numbers_warning(found, src.text)
+    if warning is not None:
+        sink.emit(dg.GUESS_CHANGES_NUMBERS, Span(src.source_id, 0, 0), warning)
     return resolve_dialect(Options(dialect=name, dialect_options=opts.dialect_options), sink)
 
 

@@ -21,7 +21,7 @@ from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
-from cncc.ir import Arc, Command, Dwell, Linear, Rapid, Spindle, SpindleState, Stop, StopKind, ToolChange
+from cncc.ir import Arc, Aux, Command, Dwell, Linear, Rapid, Spindle, SpindleState, Stop, StopKind, ToolChange
 from cncc.ir.machine import MachineModel, RapidMode
 
 if TYPE_CHECKING:
@@ -108,6 +108,10 @@ def command_time_s(c: Command, machine: MachineModel) -> tuple[float, str]:
             if c.state in (SpindleState.CW, SpindleState.CCW):
                 return machine.spindle_ramp_s, "spindle"
             return 0.0, "spindle"
+        case Aux():
+            whole, frac = divmod(c.code, 10)
+            known = machine.m_code(f"M{whole:02d}" + (f".{frac}" if frac else ""))
+            return (known.seconds, "wait") if known is not None else (0.0, "")
         case Stop():
             if c.kind is StopKind.OPTIONAL_STOP or c.kind is StopKind.PROGRAM_STOP:
                 return machine.optional_stop_s, "wait"

@@ -168,14 +168,49 @@ def parse_dialect(raw: dict[str, Any]) -> Dialect:
     )
 
 
-@functools.cache
-def load_dialect(name: str) -> Dialect:
-    """Load a built-in dialect by name (raises :class:`DialectError` if unknown)."""
+NOT_INHERITED = frozenset({"name", "title", "base", "remove", "detect"})
+"""Keys a dialect with ``base = "..."`` does not take from its base."""
+
+
+def merge_base(base: dict[str, Any], top: dict[str, Any]) -> dict[str, Any]:
+    """``top`` written as changes to ``base``: tables are merged key by key, the ``[[g]]`` and
+    ``[[m]]`` entries by code (``top`` replaces or adds), ``remove = ["G22", ...]`` drops codes,
+    any other key of ``top`` replaces the base's."""
+    out = {k: v for k, v in base.items() if k not in NOT_INHERITED}
+    drop = {_unsupported_key(str(c)) for c in top.get("remove", [])}
+    for key in ("g", "m"):
+        out[key] = [e for e in out.get(key, []) if _unsupported_key(str(e.get("code", ""))) not in drop]
+    for key, value in top.items():
+        if key in ("g", "m") and isinstance(value, list):
+            mine = {_unsupported_key(str(e.get("code", ""))) for e in value}
+            out[key] = [e for e in out[key] if _unsupported_key(str(e.get("code", ""))) not in mine] + value
+        elif isinstance(value, dict) and isinstance(out.get(key), dict):
+            out[key] = {**out[key], **value}
+        elif key != "remove":
+            out[key] = value
+    return out
+
+
+def _read_raw(name: str, depth: int = 0) -> dict[str, Any]:
     if name not in available():
         raise DialectError(f"unknown dialect {name!r} (known: {', '.join(available())})")
+    if depth > 4:
+        raise DialectError(f"{name}.toml: 'base' nested too deep")
     text = resources.files(__package__).joinpath(f"{name}.toml").read_text(encoding="utf-8")
     try:
         raw = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise DialectError(f"{name}.toml: {exc}") from None
-    return parse_dialect(raw)
+    base = raw.get("base")
+    if base is None:
+        return raw
+    return merge_base(_read_raw(str(base), depth + 1), raw)
+
+
+@functools.cache
+def load_dialect(name: str) -> Dialect:
+    """Load a built-in dialect by name (raises :class:`DialectError` if unknown).
+
+    A dialect file may start from another (``base = "fanuc"``) and list only what differs
+    (:func:`merge_base`)."""
+    return parse_dialect(_read_raw(name))

@@ -16,10 +16,11 @@ from cncc.frontend.interp import InterpOptions, Interpreter
 from cncc.frontend.macro import MacroOptions, needs_executor, run_program
 from cncc.frontend.macro.remap import remaps_cycles
 from cncc.frontend.parser import ParseOptions, Parser
+from cncc.frontend.tape import before_tape_end
 from cncc.ir import Command
 from cncc.source import SourceFile
 
-__all__ = ["InterpOptions", "Interpreter", "MacroOptions", "ParseOptions", "Parser", "lower"]
+__all__ = ["InterpOptions", "Interpreter", "MacroOptions", "ParseOptions", "Parser", "before_tape_end", "lower"]
 
 
 def lower(src: SourceFile, dialect: Dialect, sink: DiagnosticSink,
@@ -31,6 +32,8 @@ def lower(src: SourceFile, dialect: Dialect, sink: DiagnosticSink,
     command-line options: ``-D`` presets, ``-I`` folders, the step budget ...).
     """
     opts = options or InterpOptions()
+    if dialect.raw.get("tape_end"):
+        src = before_tape_end(src)
     if dialect.raw.get("checker") or dialect.macro_flavour == "linuxcnc":  # grbl's checks, LinuxCNC O-words
         from cncc.frontend.dialect_front import lower_checked
 

@@ -75,6 +75,7 @@ class InterpOptions:
     block_delete: bool = True  # skip blocks starting with '/'
     strict: bool = False
     start_mm: Vec6 = ZERO6
+    machine_m_codes: dict[int, str] = field(default_factory=dict)  # M tenths -> meaning (machine model)
 
 
 @dataclass(slots=True)
@@ -261,6 +262,12 @@ class Interpreter:
                            f"{w.letter}{w.value:g} is not a {self.dialect.name} code")
             return None
         cdef = self.dialect.code(w.letter, tenths)
+        if cdef is None and w.letter == "M":
+            from cncc.frontend.mcodes import machine_m_code
+
+            cdef = machine_m_code(self, w, tenths)
+            if cdef is not None:
+                return cdef
         if cdef is None:
             self.sink.emit(dg.UNKNOWN_G if w.letter == "G" else dg.UNKNOWN_M, self.word_span(w),
                            f"{code_name(w.letter, tenths)} is not a {self.dialect.name} code")

@@ -37,8 +37,34 @@ class ParseOptions:
     strict: bool = False  # malformed numbers are errors rather than warnings
 
 
-def grammar_text(family: str, comments: tuple[str, ...], block_end: str) -> str:
-    """The grammar of ``family`` with the dialect's comment and block-end forms."""
+def abbreviations(dialect: Dialect) -> tuple[tuple[str, str], ...]:
+    """(word, abbreviation) pairs of the dialect's macro words (``[macro_words]``).
+
+    Fanuc accepts the first two letters of a macro word for the word (``WH`` for WHILE,
+    ``GO`` for GOTO, ``AT`` for ATAN ...).  An abbreviation two words share is not used.
+    """
+    raw = dialect.raw.get("macro_words", {})
+    letters = int(raw.get("abbreviation_letters", 0))
+    if letters <= 0:
+        return ()
+    words = [str(w).upper() for w in raw.get("words", []) if len(str(w)) > letters]
+    short = [w[:letters] for w in words]
+    return tuple((w, a) for w, a in zip(words, short, strict=True) if short.count(a) == 1 and a not in words)
+
+
+def _with_abbreviations(line: str, pairs: tuple[tuple[str, str], ...]) -> str:
+    """A terminal line ``NAME.p: /A|B/i`` with each word's abbreviation as one more alternative."""
+    if not re.match(r"^[A-Z_]+(\.\d+)?:\s*/", line):
+        return line
+    for word, short in pairs:
+        line = re.sub(rf"(?<=[/(|]){word}(?=[/)|])", f"{word}|{short}", line)
+    return line
+
+
+def grammar_text(family: str, comments: tuple[str, ...], block_end: str,
+                 abbreviated: tuple[tuple[str, str], ...] = ()) -> str:
+    """The grammar of ``family`` with the dialect's comment and block-end forms (and the
+    abbreviations of its macro words, :func:`abbreviations`)."""
     text = resources.files("cncc.grammar").joinpath(f"{family}.lark").read_text(encoding="utf-8")
     enabled = set(comments)
     terminals = {"paren": ["PAREN_COMMENT", "UNCLOSED_PAREN"], "slash": ["SLASH_COMMENT"], "semi": ["SEMI_COMMENT"]}
@@ -54,6 +80,8 @@ def grammar_text(family: str, comments: tuple[str, ...], block_end: str) -> str:
         if line.rstrip().endswith("// @comment-rule"):
             names = [t for kind in ("paren", "slash", "semi") if kind in enabled for t in terminals[kind]]
             line = "comment: " + " | ".join(names) if names else ""
+        if abbreviated:
+            line = _with_abbreviations(line, abbreviated)
         out.append(line)
     return "\n".join(out) + "\n"
 
@@ -61,10 +89,11 @@ def grammar_text(family: str, comments: tuple[str, ...], block_end: str) -> str:
 class _Builder(SzghBuilder, LinuxcncBuilder, Series8Builder, Transformer[Token, Any]):
     """Builds syntax nodes with absolute offsets (``base`` is the line's offset)."""
 
-    def __init__(self) -> None:
+    def __init__(self, full_words: dict[str, str] | None = None) -> None:
         super().__init__()
         self.base = 0
         self.bad_numbers: list[tuple[int, int, str]] = []
+        self.full_words = full_words or {}  # abbreviation -> macro word ("WH" -> "WHILE")
 
     # -- helpers
     def _num(self, tok: Token) -> sx.Num:
@@ -124,7 +153,8 @@ class _Builder(SzghBuilder, LinuxcncBuilder, Series8Builder, Transformer[Token, 
         expr = items[0]
         for i in range(1, len(items), 2):
             op, right = items[i], items[i + 1]
-            expr = sx.BinOp(str(op).upper(), expr, right, _start(expr), _end(right))
+            name = str(op).upper()
+            expr = sx.BinOp(self.full_words.get(name, name), expr, right, _start(expr), _end(right))
         return expr  # type: ignore[no-any-return]
 
     compare = sum = product = _binary
@@ -133,7 +163,8 @@ class _Builder(SzghBuilder, LinuxcncBuilder, Series8Builder, Transformer[Token, 
         func = items[0]
         args = tuple(items[1:])
         start = self.base + (func.start_pos or 0)
-        return sx.Call(str(func).upper(), args, start, _end(args[-1]) + 1)
+        name = str(func).upper()
+        return sx.Call(self.full_words.get(name, name), args, start, _end(args[-1]) + 1)
 
     def var_number(self, items: list[Any]) -> sx.Var:
         num = self._num(items[0])
@@ -190,10 +221,11 @@ def _end(node: Any) -> int:
 
 
 @functools.cache
-def _lark(family: str, comments: tuple[str, ...], block_end: str) -> tuple[Lark, _Builder]:
-    builder = _Builder()
+def _lark(family: str, comments: tuple[str, ...], block_end: str,
+          abbreviated: tuple[tuple[str, str], ...] = ()) -> tuple[Lark, _Builder]:
+    builder = _Builder({short: word for word, short in abbreviated})
     parser = Lark(
-        grammar_text(family, comments, block_end),
+        grammar_text(family, comments, block_end, abbreviated),
         parser="lalr",
         lexer="contextual",
         transformer=builder,
@@ -234,6 +266,10 @@ class Parser:
         self._block_end = dialect.block_end
         self._plain = _plain_line_re(self._comments, self._block_end)
         self._family = dialect.grammar
+        self._abbreviated = abbreviations(dialect)
+        # ISO tape format: ':1000' is the program number O1000 (one character for one)
+        self._command = str(dialect.raw.get("system_command_prefix", ""))  # grbl '$H': not G-code
+        self._o_marks = tuple(str(m) for m in dialect.raw.get("program_number_marks", []) if len(str(m)) == 1)
 
     def blocks(self, src: SourceFile) -> Iterator[sx.Block]:
         """Yield the blocks of ``src`` in order."""
@@ -259,6 +295,15 @@ class Parser:
             return
         if not line.isascii():
             line = self._fullwidth(src, line, pos)
+        if self._command and line.lstrip().startswith(self._command):
+            lead = len(line) - len(line.lstrip())
+            text = line.strip()
+            yield sx.Block(line_no, pos, pos + len(line.rstrip("\r")), (),
+                           (sx.CommentItem(text, pos + lead, pos + lead + len(text)),))
+            return
+        if self._o_marks and line.lstrip()[:1] in self._o_marks:
+            lead = len(line) - len(line.lstrip())
+            line = line[:lead] + "O" + line[lead + 1:]
         m = self._plain.fullmatch(line)
         if m is not None:
             yield self._plain_block(line, pos, line_no, m.start("c"), m.group("c"))
@@ -298,7 +343,7 @@ class Parser:
 
     # ---- grammar path
     def _lark_blocks(self, src: SourceFile, line: str, base: int, line_no: int) -> Iterator[sx.Block]:
-        parser, builder = _lark(self._family, self._comments, self._block_end)
+        parser, builder = _lark(self._family, self._comments, self._block_end, self._abbreviated)
         builder.base = base
         builder.bad_numbers = []
         stripped = line.rstrip("\r")

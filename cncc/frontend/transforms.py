@@ -72,7 +72,9 @@ def _table_value(it: Interpreter, ctx: BlockContext, table: dict[int, float], we
     if index == 0:
         return 0.0
     if index not in table and index not in wear:
-        it.sink.emit(dg.OFFSET_NOT_IN_TABLE, ctx.span, f"{letter}{index} is not in the tool table; 0 is used")
+        from cncc.frontend.offset_notes import offset_missing
+
+        offset_missing(it, ctx.span, letter, index)
     return table.get(index, 0.0) + wear.get(index, 0.0)
 
 

@@ -27,6 +27,14 @@ class BacklashMode(enum.Enum):
 
 
 @dataclass(frozen=True, slots=True)
+class MCode:
+    """An M code the machine (not the control) implements, e.g. ``M10`` clamp, 0.8 s."""
+
+    meaning: str = ""
+    seconds: float = 0.0
+
+
+@dataclass(frozen=True, slots=True)
 class StepOutput:
     """Step/dir output of one axis."""
 
@@ -95,6 +103,15 @@ class MachineModel:
     # G28 reference and the G30 P2..P4 positions, machine coordinates (mm, deg)
     reference_positions_mm: tuple[tuple[float, ...], ...] = ((0.0, 0.0, 0.0, 0.0, 0.0, 0.0),) * 4
     notes: str = ""
+    # the machine builder's own M codes: "M10" -> MCode (meaning, seconds it takes)
+    m_codes: tuple[tuple[str, MCode], ...] = ()
+
+    def m_code(self, name: str) -> MCode | None:
+        """The machine's own M code ``name`` ("M10"), or None."""
+        for key, code in self.m_codes:
+            if key == name:
+                return code
+        return None
 
     def axis(self, name: str) -> Axis | None:
         for a in self.axes:

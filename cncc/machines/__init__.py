@@ -36,7 +36,7 @@ from importlib import resources
 from pathlib import Path
 from typing import Any
 
-from cncc.ir.machine import Axis, CornerRule, MachineModel, StepOutput
+from cncc.ir.machine import Axis, CornerRule, MachineModel, MCode, StepOutput
 
 BUILTIN = ("generic-mill", "szgh-990mdb", "syntec-900m")
 
@@ -73,11 +73,37 @@ def machine_from_dict(data: Mapping[str, Any]) -> MachineModel:
     names = [a.name for a in axes]
     if len(set(names)) != len(names):
         raise MachineError("axes", f"duplicate axis names {names}")
-    kwargs = _convert_fields(MachineModel, body, prefix="", skip={"axes"})
+    m_codes = _m_codes(body.pop("m_codes", []))
+    kwargs = _convert_fields(MachineModel, body, prefix="", skip={"axes", "m_codes"})
+    kwargs["m_codes"] = m_codes
     kwargs.setdefault("name", "unnamed")
     model = MachineModel(axes=axes, **kwargs)
     _check_positive(model)
     return model
+
+
+def _m_codes(raw: Any) -> tuple[tuple[str, MCode], ...]:
+    """``[[m_codes]] code = "M10", meaning = "...", seconds = 0.8`` -> (("M10", MCode), ...)."""
+    if not isinstance(raw, list):
+        raise MachineError("m_codes", "expected an array of tables ([[m_codes]])")
+    out = []
+    for i, entry in enumerate(raw):
+        where = f"m_codes[{i}]"
+        if not isinstance(entry, dict) or not isinstance(entry.get("code"), str):
+            raise MachineError(where, "needs a string 'code' such as \"M10\"")
+        unknown = set(entry) - {"code", "meaning", "seconds"}
+        if unknown:
+            raise MachineError(f"{where}.{sorted(unknown)[0]}", "unknown key (known: code, meaning, seconds)")
+        code = entry["code"].strip().upper()
+        if code[:1] != "M" or not code[1:].replace(".", "", 1).isdigit():
+            raise MachineError(f"{where}.code", f"{code!r} is not an M code")
+        seconds = entry.get("seconds", 0.0)
+        if not isinstance(seconds, int | float) or seconds < 0:
+            raise MachineError(f"{where}.seconds", "expected a number of seconds, 0 or more")
+        whole, _, frac = code[1:].partition(".")
+        name = f"M{int(whole):02d}" + (f".{frac}" if frac else "")
+        out.append((name, MCode(str(entry.get("meaning", "")), float(seconds))))
+    return tuple(out)
 
 
 def effective_corner_rule(machine: MachineModel, level: int) -> CornerRule:

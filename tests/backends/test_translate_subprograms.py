@@ -19,7 +19,7 @@ from cncc.cli import main
 from tests.backends.test_translate_roundtrip import DATA, TABLES, TARGETS, check
 
 TEXT = (DATA / "corpus" / "syntec" / "subprograms.nc").read_text()
-CALLERS = {"syntec", "fanuc", "szgh", "linuxcnc"}  # targets with M98 or o-word subroutines
+CALLERS = {"syntec", "fanuc", "haas", "szgh", "linuxcnc"}  # targets with M98 or o-word subroutines
 
 
 def calls(out: str) -> list[str]:

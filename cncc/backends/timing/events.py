@@ -12,6 +12,8 @@ The rules (``docs/timing.md`` lists them with the reasons):
   nothing; ``M05`` costs nothing (the next block does not wait for the stop).
 * ``M00`` program stop and ``M01`` optional stop: ``machine.optional_stop_s``, flagged
   operator-dependent.
+* an M code the machine model lists (``[[m_codes]]``, e.g. ``M10`` clamp): its
+  ``seconds``, category ``wait``.
 * SZGH ``WAT`` waits and pausing messages: the time on the command (0 when the
   machine gives none), flagged operator-dependent.
 
@@ -24,13 +26,13 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from cncc.ir import Command, Dwell, Message, Spindle, SpindleSpeed, SpindleState, Stop, StopKind, ToolChange, Wait
+from cncc.ir import Aux, Command, Dwell, Message, Spindle, SpindleSpeed, SpindleState, Stop, StopKind, ToolChange, Wait
 from cncc.ir.machine import MachineModel
 
 CATEGORIES: tuple[str, ...] = ("rapid", "feed", "arc", "dwell", "tool_change", "spindle", "wait", "reversal")
 """Every category of time, in report order (motions first, then events)."""
 
-EVENT_TYPES = (Dwell, ToolChange, Spindle, SpindleSpeed, Stop, Wait, Message)
+EVENT_TYPES = (Aux, Dwell, ToolChange, Spindle, SpindleSpeed, Stop, Wait, Message)
 """The command types :meth:`EventTimer.event` looks at (it must see all of them, in order)."""
 
 
@@ -70,9 +72,19 @@ class EventTimer:
                 return Event(m.optional_stop_s, "wait", True, c.kind.value)
             case Wait():
                 return Event(max(c.seconds, 0.0), "wait", True, c.what or "wait")
+            case Aux():
+                return self._aux(c)
             case Message() if c.pause:
                 return Event(0.0, "wait", True, "message")
         return None
+
+    def _aux(self, c: Aux) -> Event | None:
+        whole, frac = divmod(c.code, 10)
+        name = f"M{whole:02d}" + (f".{frac}" if frac else "")
+        known = self.machine.m_code(name)
+        if known is None or known.seconds <= 0:
+            return None
+        return Event(known.seconds, "wait", False, f"{name} {known.meaning}".strip())
 
     def _spindle(self, c: Spindle) -> Event | None:
         before, rpm_before = self.spindle, self.rpm

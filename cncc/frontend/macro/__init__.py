@@ -10,7 +10,7 @@ macro, call or jump feature at all (if not, the plain interpreter is enough).
 from __future__ import annotations
 
 import re
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 
 from cncc.diagnostics import DiagnosticSink
 from cncc.dialects import Dialect
@@ -55,13 +55,20 @@ def needs_executor(text: str, dialect: Dialect) -> bool:
 def run_program(src: SourceFile, dialect: Dialect, sink: DiagnosticSink, options: InterpOptions,
                 macro: MacroOptions | None = None) -> Iterator[Command]:
     """Run ``src`` with the macro executor; yield IR commands in execution order."""
-    parser = Parser(dialect, sink, ParseOptions(strict=options.strict))
+    from cncc.frontend.macro.library import is_library, run_library
+
+    def parse_with(into: DiagnosticSink) -> Callable[[SourceFile], list[Block]]:
+        parser = Parser(dialect, into, ParseOptions(strict=options.strict))
+        if dialect.raw.get("tape_end"):  # called program files end at their closing '%' too
+            from cncc.frontend.tape import before_tape_end
+
+            return lambda source: list(parser.blocks(before_tape_end(source)))
+        return lambda source: list(parser.blocks(source))
+
+    if dialect.macro_flavour == "fanuc" and is_library(src.text):  # called programs: unknown arguments
+        return run_library(src, dialect, sink, options, macro or MacroOptions(), parse_with)
     interp = Interpreter(dialect, sink, src.source_id, options)
-
-    def parse(source: SourceFile) -> list[Block]:
-        return list(parser.blocks(source))
-
-    ex = Executor(dialect, sink, interp, macro or MacroOptions(), parse)
+    ex = Executor(dialect, sink, interp, macro or MacroOptions(), parse_with(sink))
     return ex.run(src)
 
 

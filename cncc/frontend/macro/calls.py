@@ -33,7 +33,7 @@ MACRO_KINDS = frozenset({"G65", "G66", "user"})
 CONSUMES = {
     "subprogram_call": "PLH", "subprogram_return": "P", "jump": "P", "block_loop": "L",
     "input_wait_on": "P", "input_wait_off": "P", "block_loop_end": "", "modal_call_off": "",
-    "program_restart": "",
+    "program_restart": "", "local_call": "PL",
 }
 
 
@@ -76,6 +76,8 @@ def _one(ex: Executor, fr: CallFrame, i: int, c: CodeDef, w: Word, words: tuple[
     op = c.op
     if op == "subprogram_call":
         _subprogram_call(ex, fr, words, names, span)
+    elif op == "local_call":
+        _local_call(ex, fr, c, words, span)
     elif op == "subprogram_return":
         p = _word(words, "P")
         ex.do_return(fr, _label(p) if p is not None else None, span)
@@ -229,6 +231,22 @@ def _subprogram_call(ex: Executor, fr: CallFrame, words: tuple[Word, ...], names
             return
         index, name = target, f"N{_label(h)}"
     push_call(ex, fr, "M98", unit, index, repeats, None, span, name)
+
+
+def _local_call(ex: Executor, fr: CallFrame, c: CodeDef, words: tuple[Word, ...], span: Span) -> None:
+    """Haas ``M97 P_ L_``: run the blocks from ``N<P>`` of this file to its M99, L times."""
+    repeats = _count(ex, words, span)
+    p = _word(words, "P")
+    if repeats is None:
+        return
+    if p is None or p.value != int(p.value) or p.value < 0:
+        ex.fail(dg.MACRO_BAD_CALL, span, f"{c.name} needs P, the sequence number of the local subprogram")
+        return
+    target = fr.unit.find_label(_label(p), fr.first)
+    if target is None:
+        ex.fail(dg.MACRO_NO_LABEL, span, f"there is no block N{_label(p)} in this program to call")
+        return
+    push_call(ex, fr, "M98", fr.unit, target, repeats, None, span, f"N{_label(p)}")
 
 
 def _macro_call(ex: Executor, fr: CallFrame, words: tuple[Word, ...], by_op: dict[str, tuple[Word, CodeDef]],

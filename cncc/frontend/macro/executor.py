@@ -57,6 +57,7 @@ from cncc.source import NO_SPAN, SourceFile, Span
 EXEC_OPS = frozenset({
     "subprogram_call", "subprogram_return", "macro_call", "modal_call", "modal_call_off", "block_loop",
     "block_loop_end", "jump", "user_macro", "input_wait_on", "input_wait_off", "program_restart",
+    "local_call",
 })
 """Ops the executor handles itself instead of the interpreter."""
 
@@ -81,6 +82,8 @@ class MacroOptions:
     # SetMode("call_begin"/"call_end", (program key, name)) around every run of a called program
     # (translation --keep-subprograms); off: no marker reaches the IR
     call_markers: bool = False
+    # the other input files of the run: their O programs can be called (a main and its library)
+    run_files: tuple[str, ...] = ()
 
 
 def layout_for(dialect: Dialect) -> VariableLayout:
@@ -107,11 +110,13 @@ class Executor:
         self.vars = Variables(layout_for(dialect))
         self.io = IoState(dict(options.io_inputs))
         self.sys = MachineVariables(interp, self.flavour, self.io, self._control)
+        self.sys.warn = self._unknown_system_variable
         self.vars.system = self.sys
         self.ev = Evaluator(self.vars)
         exts = tuple(dict.fromkeys((*dialect.extensions, ".nc", "")))
         self.library = ProgramLibrary(parse, sink, options.include_dirs, exts, options.load_source)
         self.library.files_used = options.files_used
+        self.library.run_files = options.run_files
         self.stack: list[CallFrame] = []
         self.steps = 0
         self.stopped = False
@@ -376,6 +381,10 @@ class Executor:
             raise MacroError(dg.MACRO_ALARM, f"alarm {3000 + number}" + (f": {text}" if text else ""))
         self.out.append(Message(span, self.it.frame, text or f"stop {number}", pause=True))
         self.emit(dg.MACRO_STOP_MESSAGE, span, f"program stop with message{': ' + text if text else ''}")
+
+    def _unknown_system_variable(self, message: str) -> None:
+        span = (Span(self.it.source_id, self.block.start, self.block.end) if self.block is not None else NO_SPAN)
+        self.emit(dg.UNKNOWN_SYSTEM_VARIABLE, span, message)
 
     def end_program(self, span: Span) -> None:
         """M99 in a main program (``m99_in_main = "end"``): end as M02 does."""

@@ -189,6 +189,7 @@ class ProgramLibrary:
     load_source: Loader | None = None
     units: list[Unit] = field(default_factory=list)
     files_used: list[str] = field(default_factory=list)
+    run_files: tuple[str, ...] = ()  # the run's other inputs, searched after the -I folders
     _by_path: dict[str, Unit | None] = field(default_factory=dict)
 
     def add(self, source: SourceFile) -> Unit:
@@ -208,6 +209,13 @@ class ProgramLibrary:
             loaded = self._load(path)
             if loaded is not None:
                 return loaded, loaded.sections.get(key, 0)
+        here = os.path.realpath(caller.source.name)
+        for path in self.run_files:
+            if path == "-" or not os.path.isfile(path) or os.path.realpath(path) == here:
+                continue
+            loaded = self._load(path)
+            if loaded is not None and key in loaded.sections:
+                return loaded, loaded.sections[key]
         return None
 
     def _candidates(self, key: str, text: str) -> list[str]:

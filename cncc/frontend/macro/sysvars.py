@@ -23,6 +23,13 @@ SZGH manual's examples use for ``#4003``, ``#4014``, ``#5001``):
 ``#1001-#1799``     SZGH tool tables in um (X/Y/Z/A length, D1-D4 radius)
 ``#1800-#1804``     SZGH input bytes X00-X39; ``#1808-#1809`` output words
 =================  ========================================================
+
+A dialect with a ``[[system_variables]]`` table (Fanuc, Haas: :mod:`.systable`) uses
+its table instead: the ranges say what exists and what is writable, by kind; a number
+outside every range is unknown (a warning through :attr:`MachineVariables.warn`, read
+vacant, a write ignored) rather than an error.  Wear memories are kept apart and
+added to the geometry in the offsets the interpreter uses (memory C: H = geometry +
+wear).
 """
 
 from __future__ import annotations
@@ -32,6 +39,7 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
 from cncc.dialects import code_tenths
+from cncc.frontend.macro.systable import SystemRange, table_for
 from cncc.frontend.macro.values import MacroError, Value
 
 if TYPE_CHECKING:
@@ -94,6 +102,11 @@ class MachineVariables:
             self.group_numbers.setdefault(number, []).append(name)
         self.current_n = 0
         self.current_o = 0
+        self.table = table_for(interp.dialect)
+        self.warn: Callable[[str], None] | None = None  # unknown system variables (set by the executor)
+        self.stored: dict[int, float] = {}  # written values of the kinds cncc does not model
+        self.wear: dict[tuple[str, int], float] = {}  # ("length"|"radius", offset number) -> mm
+        self._warned: set[int] = set()
 
     # ---- helpers
     @property
@@ -103,8 +116,81 @@ class MachineVariables:
     def _axis(self, k: int, vec: tuple[float, ...]) -> float:
         return vec[k] / self._unit_mm if k < 3 else vec[k]
 
+    # ---- the dialect's table
+    def _unknown(self, n: int, what: str) -> None:
+        if self.warn is not None and n not in self._warned:
+            self._warned.add(n)
+            self.warn(f"#{n} is not a {self.it.dialect.name} system variable cncc knows; {what}")
+
+    def _table_read(self, r: SystemRange, n: int) -> Value:
+        k = n - r.first
+        kind = r.kind
+        if kind == "io_input":
+            return self.io.inputs.get(f"#{n}", self.stored.get(n, 0.0))
+        if kind in ("output", "constant", "alarm", "message_stop"):
+            return self.stored.get(n, 0.0)
+        if kind == "modal_g":
+            return self._modal_g(n % 100)
+        if kind == "modal_other":
+            return self._modal_other(n % 100)
+        if kind == "position":
+            return self._axis(k, self.it.pos) if k < 6 else 0.0
+        if kind == "machine_position":
+            return self._axis(k, self._machine_pos()) if k < 6 else 0.0
+        if kind == "work":
+            return self._work_read(n)
+        if kind == "work_extended":
+            index, axis = divmod(k, 20)
+            off = self.it.options.work_offsets_mm.get(7 + index, (0.0,) * 6)
+            return self._axis(axis, off) if axis < 6 else 0.0
+        table, wear = kind.removeprefix("tool_").removesuffix("_wear"), kind.endswith("_wear")
+        w = self.wear.get((table, k + 1), 0.0)
+        if wear:
+            return w / self._unit_mm
+        values = self.it.options.tool_lengths_mm if table == "length" else self.it.options.tool_radii_mm
+        return (values.get(k + 1, 0.0) - w) / self._unit_mm
+
+    def _table_write(self, r: SystemRange, n: int, value: Value) -> bool:
+        if not r.writable:
+            return False
+        v = 0.0 if value is None else value
+        k = n - r.first
+        kind = r.kind
+        opts = self.it.options
+        if kind in ("alarm", "message_stop"):
+            self.on_control(n, value)
+        elif kind == "work" and n >= 5221:
+            return self.write_work(n, v)
+        elif kind == "work_extended":
+            index, axis = divmod(k, 20)
+            if axis < 6:
+                off = list(opts.work_offsets_mm.get(7 + index, (0.0,) * 6))
+                off[axis] = v * (self._unit_mm if axis < 3 else 1.0)
+                opts.work_offsets_mm[7 + index] = tuple(off)  # type: ignore[assignment]
+        elif kind.startswith("tool_"):
+            table = kind.removeprefix("tool_").removesuffix("_wear")
+            values = opts.tool_lengths_mm if table == "length" else opts.tool_radii_mm
+            old = self.wear.get((table, k + 1), 0.0)
+            mm = v * self._unit_mm
+            if kind.endswith("_wear"):
+                self.wear[(table, k + 1)] = mm
+                values[k + 1] = values.get(k + 1, 0.0) - old + mm
+            else:
+                values[k + 1] = mm + old
+        else:
+            self.stored[n] = v
+        return True
+
     # ---- reading
     def read(self, n: int) -> Value:
+        if self.table is not None:
+            r = self.table.find(n)
+            if r is None:
+                if f"#{n}" in self.io.inputs:
+                    return self.io.inputs[f"#{n}"]
+                self._unknown(n, "read as vacant")
+                return None
+            return self._table_read(r, n)
         if self.flavour == "szgh" and 1001 <= n <= 1809:
             return self._szgh_read(n)
         if 1000 <= n <= 1035:
@@ -194,6 +280,12 @@ class MachineVariables:
 
     # ---- writing
     def write(self, n: int, value: Value) -> bool:
+        if self.table is not None:
+            r = self.table.find(n)
+            if r is None:
+                self._unknown(n, "the write is ignored")
+                return True
+            return self._table_write(r, n, value)
         v = 0.0 if value is None else value
         if n in (3000, 3006):
             self.on_control(n, value)
@@ -215,10 +307,16 @@ class MachineVariables:
             opts.tool_radii_mm[n % 1000 if n > 10000 else n - 2200] = v * self._unit_mm
             return True
         if 5221 <= n <= 5346:
-            k, axis = divmod(n - 5201, 20)
-            if axis < 6:
-                off = list(opts.work_offsets_mm.get(k, (0.0,) * 6))
-                off[axis] = v * (self._unit_mm if axis < 3 else 1.0)
-                opts.work_offsets_mm[k] = tuple(off)  # type: ignore[assignment]
-                return True
+            return self.write_work(n, v)
         return False
+
+    def write_work(self, n: int, v: float) -> bool:
+        """G54-G59 (#5221 ... step 20): the offset of one axis, in program units."""
+        opts = self.it.options
+        k, axis = divmod(n - 5201, 20)
+        if axis >= 6:
+            return False
+        off = list(opts.work_offsets_mm.get(k, (0.0,) * 6))
+        off[axis] = v * (self._unit_mm if axis < 3 else 1.0)
+        opts.work_offsets_mm[k] = tuple(off)  # type: ignore[assignment]
+        return True

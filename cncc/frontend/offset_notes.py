@@ -1,0 +1,52 @@
+"""W0513 without a tool table: one warning per program listing every H/D number used.
+
+When the run has a tool table (``--tools`` or offsets written by the program before
+the first use), each H or D number missing from it is its own warning at the word.
+Without one, every H and D word would warn (79 warnings in 16 shop files): the
+program then gets one warning, at the first use, whose message lists the numbers.
+"""
+
+from __future__ import annotations
+
+import weakref
+from dataclasses import dataclass, field, replace
+from typing import TYPE_CHECKING
+
+from cncc import diagnostics as dg
+from cncc.source import Span
+
+if TYPE_CHECKING:
+    from cncc.frontend.interp import Interpreter
+
+
+@dataclass(slots=True)
+class _Missing:
+    table_given: bool
+    names: list[str] = field(default_factory=list)
+    at: int = -1  # index of the warning in the sink
+
+
+_SEEN: weakref.WeakKeyDictionary[Interpreter, _Missing] = weakref.WeakKeyDictionary()
+
+
+def offset_missing(it: Interpreter, span: Span, letter: str, index: int) -> None:
+    """Report that offset ``letter``+``index`` (H1, D7) is not in the tool table."""
+    st = _SEEN.get(it)
+    if st is None:
+        st = _SEEN[it] = _Missing(bool(it.options.tool_lengths_mm or it.options.tool_radii_mm))
+    name = f"{letter}{index}"
+    if st.table_given:
+        it.sink.emit(dg.OFFSET_NOT_IN_TABLE, span, f"{name} is not in the tool table; 0 is used")
+        return
+    if name in st.names:
+        return
+    st.names.append(name)
+    message = (f"no tool table (--tools): 0 is used for the offsets {', '.join(st.names)}"
+               if len(st.names) > 1 else f"no tool table (--tools): 0 is used for the offset {name}")
+    items = it.sink.items
+    if 0 <= st.at < len(items) and items[st.at].code == dg.OFFSET_NOT_IN_TABLE:
+        items[st.at] = replace(items[st.at], message=message)
+        return
+    before = len(items)
+    it.sink.emit(dg.OFFSET_NOT_IN_TABLE, span, message)
+    st.at = before if len(items) > before else -1

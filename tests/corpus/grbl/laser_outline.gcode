@@ -1,0 +1,18 @@
+; LightBurn-like output for a grbl 1.1 laser
+; Bounds: X0 Y0 to X40 Y30
+G00 G17 G40 G21 G54
+G90
+M4
+G0 X0 Y0
+G1 X40 S800 F1500
+G1 Y30
+G1 X0
+G1 Y0
+G0 X10 Y10
+G1 X30 S500
+G1 Y20
+G1 X10
+G1 Y10
+M5
+G0 X0 Y0
+M2

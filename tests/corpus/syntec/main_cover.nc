@@ -1,0 +1,28 @@
+%
+O0100
+// COVER PLATE, SYNTEC 900M
+// T1 D10 END MILL, T2 D6.8 DRILL
+G71 G90 G17 G40 G49 G80;
+T1 M06;
+G54 G00 X-10. Y-10. S5000 M03;
+G43 H01 Z20. M08;
+G00 Z2.;
+G01 Z-3. F200.;
+G41 D01 G01 X0. Y0. F600.; // start the contour
+Y60.;
+X80.;
+Y0.;
+X0.;
+G40 G01 X-10. Y-10.;
+G00 Z20.;
+T2 M06;
+G00 X40. Y30. S2500 M03;
+G43 H02 Z20.;
+G65 P9100 X40. Y30. I25. J0. K8. Z-12. F180.; // holes on a circle
+G99 G81 Z-8. R2. F150. K0; // store the drilling data
+G134 X40. Y30. I12. J45. K4; // SYNTEC bolt circle pattern
+G80;
+G00 Z50. M09;
+M05;
+M30;
+%
