@@ -46,8 +46,6 @@ def test_the_server_reports_what_the_compiler_reports(dialect: str, tmp_path: Pa
     assert server_codes(path, dialect) == expected
 
 
-@pytest.mark.xfail(strict=False, reason="needs the Fanuc-family executors to continue past a missing "
-                   "subprogram (the cli helper's part of issue 19); then it passes")
 def test_every_missing_subprogram_is_reported(tmp_path: Path) -> None:
     path = tmp_path / "prog.nc"
     text = PROGRAMS["fanuc"]
