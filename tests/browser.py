@@ -107,8 +107,8 @@ class Browser:
         self.call("Page.navigate", {"url": url})
         deadline = time.monotonic() + timeout_s
         while not self.js(ready):
-            if time.monotonic() > deadline:
-                raise TimeoutError(f"{url} not ready")
+            if time.monotonic() > deadline or any(c.startswith("exception") for c in self.console):
+                raise TimeoutError(f"{url} not ready: {self.console}")
             time.sleep(0.05)
 
     def click(self, x: float, y: float) -> None:

@@ -178,3 +178,12 @@ def test_100k_line_page_in_chromium(browser: Browser, tmp_path: Path) -> None:
     mid = tuple((a + c) / 2 for a, c in zip(p0, p1, strict=True))
     _click_selects(browser, "xz", mid, line_of(built.text, "G00 Z50.0", last=True))
     assert browser.console == []
+
+
+@needs_chromium
+@pytest.mark.parametrize("program", ["", "G04 X1.\nM00\n", "G00 X10.\n", "G01 X0 F100\n"])
+def test_odd_pages_load_without_console_errors(browser: Browser, tmp_path: Path, program: str) -> None:
+    page = tmp_path / "odd.html"
+    page.write_text(compile_text(program, emit="timing", report_format="html", opt_level=0).output)
+    browser.open(page.as_uri())
+    assert browser.console == []

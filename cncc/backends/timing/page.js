@@ -252,7 +252,7 @@
     for (var i = 0; i < NV; i++) { var q = pr(PT[3 * i], PT[3 * i + 1], PT[3 * i + 2]); sx[i] = q[0]; sy[i] = q[1]; }
     v.sx = sx; v.sy = sy;
     frame(ctx, name, pr, g);
-    var styles = P.tools.map(function (_t, k) { return k; }).concat([-1]);
+    var styles = (P.tools || []).map(function (_t, k) { return k; }).concat([-1]);
     styles.forEach(function (s) {
       strokeStyle(ctx, s); ctx.beginPath();
       var pen = -2;
