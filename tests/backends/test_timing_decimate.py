@@ -26,7 +26,8 @@ def test_speed_columns_keep_every_columns_extremes_and_a_limit_that_occurs() -> 
         inside = (t >= edges[k]) & (t < edges[k + 1]) if k < 299 else (t >= edges[k])
         assert c.vmax[k] == v[inside].max() and c.vmin[k] == v[inside].min()
         assert c.limit[k] in set(lim[inside].tolist())
-        assert v[c.line[k]] == c.vmax[k]
+        assert v[c.line[k]] == c.vmax[k] and c.top_limit[k] == lim[c.line[k]]
+        assert c.vlimit[k] == v[inside & (lim == c.limit[k])].max()
     assert c.vmax.max() == 5000.0
 
 
@@ -47,12 +48,15 @@ def _check_speed(b: Built, columns: np.ndarray | None, dense: int) -> None:
     edges = np.linspace(0.0, end, nc + 1)
     vmax = arr(d["speed"]["vmax"], "f4").astype(float)
     lim = arr(d["speed"]["limit"], "i1")
+    top_lim = arr(d["speed"]["top"], "i1")
+    vlim = arr(d["speed"]["vlimit"], "f4").astype(float)
     shift = _wall_shift(b)
     # trajectory-time intervals of the chosen columns: invert wall = t + shift[cmd(t)] by sampling
     t_all = np.linspace(0.0, traj.duration_total_s, dense)
     h = t_all[1] - t_all[0]
     cmd, _ = sampling.at(traj, t_all)
     wall = t_all + shift[cmd]
+    assert (np.diff(wall) >= 0).all()
     _, v, a, j = traj.sample(t_all)
     speed = np.linalg.norm(v[:, :3], axis=1) * 60
     margin = (h * np.linalg.norm(a[:, :3], axis=1).max() + h * h * np.linalg.norm(j[:, :3], axis=1).max() / 2) * 60
@@ -86,12 +90,14 @@ def _check_speed(b: Built, columns: np.ndarray | None, dense: int) -> None:
     for k in ks:
         if lim[k] < 0:
             continue
-        in_col = np.flatnonzero((wall >= edges[k]) & (wall < edges[k + 1]))
-        if len(in_col) == 0:
+        i0, i1 = np.searchsorted(wall, edges[k]), np.searchsorted(wall, edges[k + 1])  # wall is monotone
+        if i1 <= i0:
             continue
-        t0, t1 = t_all[in_col[0]] - h, t_all[in_col[-1]] + h
+        t0, t1 = t_all[i0] - h, t_all[i1 - 1] + h
         ts = np.concatenate(([max(t0, 0.0)], knots[(knots >= t0) & (knots <= t1)]))
-        assert lim[k] in set(sampling.at(traj, ts)[1].tolist()), k
+        held = set(sampling.at(traj, ts)[1].tolist())
+        assert lim[k] in held and top_lim[k] in held, k
+        assert vlim[k] <= vmax[k]
 
 
 def test_contour_speed_columns_never_exceed_the_trajectory() -> None:

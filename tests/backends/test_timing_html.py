@@ -152,9 +152,26 @@ def test_contour_page_in_chromium(browser: Browser, tmp_path: Path) -> None:
     _zoom(browser)
     # N008 X55.0 runs along Y45 from X20 to X55 at Z-10: click its middle in XY
     _click_selects(browser, "xy", (37.5, 45.0, -10.0), line_of(built.text, "N008"))
+    # hovering shows the line, its N number and its block text
+    browser.scroll_to("#view-xy")
+    x, y = browser.js("cnccTiming.project('xy', 55.0, 25.0, -10.0)")  # on N009 Y10.0 (X55 from Y45 to Y10)
+    sx, sy = browser.js("[window.scrollX, window.scrollY]")
+    browser.call("Input.dispatchMouseEvent", {"type": "mouseMoved", "x": x - sx, "y": y - sy})
+    tip = browser.js("document.getElementById('tip').textContent")
+    assert f"line {line_of(built.text, 'N009')} · N009 · N009 Y10.0" in tip
+    # a click on the speed chart in the middle of N006 selects N006
+    n006 = line_of(built.text, "N006")
+    browser.js("cnccTiming.setSpeedRange(0, 1e9)")
+    row = browser.js(f"(function(){{var r=document.querySelectorAll('tr[data-i]');for(var k=0;k<r.length;k++)"
+                     f"if(r[k].cells[0].textContent==='{n006}')return [+r[k].dataset.t0,+r[k].dataset.t1];}})()")
+    browser.scroll_to("#speed")
+    x, y = browser.js(f"cnccTiming.speedPoint({(row[0] + row[1]) / 2})")
+    sx, sy = browser.js("[window.scrollX, window.scrollY]")
+    browser.click(x - sx, y - sy)
+    assert browser.js("cnccTiming.selected()")["line"] == n006
     # the table links back: a row click selects its line and zooms the speed chart to it
     n011 = line_of(built.text, "N011")
-    browser.js(f"document.querySelector('tr[data-i] td').parentNode.parentNode.querySelectorAll('tr')"
+    browser.js(f"document.querySelectorAll('tr[data-i]')"
                f".forEach(function(tr){{if(tr.cells[0].textContent==='{n011}')tr.click();}})")
     assert browser.js("cnccTiming.selected()")["line"] == n011
     rng = browser.js("cnccTiming.speedRange()")

@@ -3,7 +3,8 @@
 * :func:`speed_columns`: samples of a speed over time reduced to pixel columns keeping
   each column's minimum and maximum (so no spike is lost and none is invented: every
   value shown is a sampled value of the trajectory), the limit that held for most of
-  the column's time (a limit that really held there), and the line at the maximum.
+  the column's time (a limit that really held there) with the highest value under it,
+  the limit at the maximum, and the line at the maximum.
 * :func:`douglas_peucker`: a polyline reduced to the vertices that keep it within a
   distance tolerance (so raster passes stay passes: a chord across two passes would
   leave the path by a whole step-over).  Level-synchronous: every interval is split
@@ -38,6 +39,8 @@ class Columns:
     vmax: F64  # (c,) largest sampled value
     limit: I64  # (c,) the limit value with the most time in the column (-1: no sample)
     line: I64  # (c,) the line of the sample at the maximum (-1: no sample)
+    top_limit: I64  # (c,) the limit at the sample at the maximum (-1: no sample)
+    vlimit: F64  # (c,) the largest sampled value under ``limit`` (NaN: no sample)
 
 
 def speed_columns(t: F64, v: F64, limit: I64, line: I64, edges: F64, n_limits: int,
@@ -56,27 +59,35 @@ def speed_columns(t: F64, v: F64, limit: I64, line: I64, edges: F64, n_limits: i
     vmax = np.full(c, np.nan)
     lim = np.full(c, -1, dtype=np.int64)
     ln = np.full(c, -1, dtype=np.int64)
+    top = np.full(c, -1, dtype=np.int64)
+    vlim = np.full(c, np.nan)
     if len(t) == 0 or c <= 0:
-        return Columns(edges, vmin, vmax, lim, ln)
+        return Columns(edges, vmin, vmax, lim, ln, top, vlim)
     col = np.clip(np.searchsorted(edges, t, side="right") - 1, 0, c - 1)
     hi = np.full(c, -np.inf)
     lo = np.full(c, np.inf)
     np.maximum.at(hi, col, v)
     np.minimum.at(lo, col, v)
-    if edge_v is not None and len(edge_v) == c + 1:
-        hi = np.fmax(hi, np.fmax(edge_v[:-1], edge_v[1:]))  # fmax/fmin: a NaN edge (no value) is ignored
-        lo = np.fmin(lo, np.fmin(edge_v[:-1], edge_v[1:]))
-    has = np.isfinite(hi)
-    vmax[has], vmin[has] = hi[has], lo[has]
-    at_max = np.flatnonzero(v == hi[col])
+    sampled = np.isfinite(hi)
+    at_max = np.flatnonzero(v == hi[col])  # the line and limit at the highest sample
     cols_at_max, first = np.unique(col[at_max], return_index=True)
     ln[cols_at_max] = line[at_max[first]]
+    top[cols_at_max] = limit[at_max[first]]
     weight = np.append(np.diff(t), 0.0)
     weight = np.maximum(weight, 1e-12)  # a lone sample still counts
     w2 = np.zeros((c, n_limits))
     np.add.at(w2, (col, np.clip(limit, 0, n_limits - 1)), weight)
-    lim[has] = w2.argmax(axis=1)[has]
-    return Columns(edges, vmin, vmax, lim, ln)
+    lim[sampled] = w2.argmax(axis=1)[sampled]
+    under = np.flatnonzero(np.clip(limit, 0, n_limits - 1) == lim[col])
+    hi_lim = np.full(c, -np.inf)
+    np.maximum.at(hi_lim, col[under], v[under])
+    vlim[np.isfinite(hi_lim)] = hi_lim[np.isfinite(hi_lim)]
+    if edge_v is not None and len(edge_v) == c + 1:
+        hi = np.fmax(hi, np.fmax(edge_v[:-1], edge_v[1:]))  # fmax/fmin: a NaN edge (no value) is ignored
+        lo = np.fmin(lo, np.fmin(edge_v[:-1], edge_v[1:]))
+    has = np.isfinite(hi) & sampled
+    vmax[has], vmin[has] = hi[has], lo[has]
+    return Columns(edges, vmin, vmax, lim, ln, top, vlim)
 
 
 def _segment_distance(p: F64, a: F64, b: F64) -> F64:

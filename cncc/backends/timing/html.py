@@ -12,6 +12,7 @@ script has run, ``<body>`` carries ``data-ready="1"`` (the browser tests wait fo
 
 from __future__ import annotations
 
+import base64
 import json
 from collections.abc import Sequence
 from html import escape
@@ -162,7 +163,7 @@ def render_html(rep: TimingReport, cmds: Sequence[Command]) -> str:
     data = page_data(rep, cmds, [r.index for r in top] + [r.index for r in shown])
     data["colors"] = {"limit": LIMIT_COLORS, "category": CATEGORY_COLORS, "tools": list(TOOL_COLORS),
                       "rapid": RAPID_COLOR, "hole": HOLE_COLOR, "selected": SELECTED_COLOR}
-    sp = np.frombuffer(__import__("base64").b64decode(data["speed"]["limit"]), dtype=np.int8)
+    sp = np.concatenate([np.frombuffer(base64.b64decode(data["speed"][k]), dtype=np.int8) for k in ("limit", "top")])
     used = [name for k, name in enumerate(data["limits"]) if (sp == k).any()]
     seen = {b[2] for b in data["bands"]}
     items = [("sw", LIMIT_COLORS[u], f"limited by {u.replace('_', ' ')}") for u in used]
@@ -171,7 +172,7 @@ def render_html(rep: TimingReport, cmds: Sequence[Command]) -> str:
         items.append(("dash", "#222", f"{data['nominal']['label']} (nominal, dashed)"))
     path = data["path"]
     tools = path.get("tools", [])
-    drawn = set(np.frombuffer(__import__("base64").b64decode(path["tool"]), dtype=np.uint8).tolist()) if path.get(
+    drawn = set(np.frombuffer(base64.b64decode(path["tool"]), dtype=np.uint8).tolist()) if path.get(
         "n") else set()
     titems = [("sw", TOOL_COLORS[k % len(TOOL_COLORS)], "no tool" if t < 0 else f"T{t}") for k, t in enumerate(tools)
               if k in drawn]

@@ -71,6 +71,7 @@
   function series(s) {
     if (!s) return null;
     return {vmin: dec(s.vmin, Float32Array), vmax: dec(s.vmax, Float32Array), limit: dec(s.limit, Int8Array),
+            top: dec(s.top, Int8Array), vlimit: dec(s.vlimit, Float32Array),
             line: dec(s.line, Int32Array), max: s.max, label: s.label};
   }
   var SP = series(D.speed), NOM = series(D.nominal), NC = D.columns, END = D.end_s;
@@ -79,17 +80,20 @@
   var vtop = Math.max(SP.max, NOM ? NOM.max : 0, 1) * 1.06;
   var units = [];  // what the chart shows: one entry per pixel (or per column when zoomed in)
   function colOf(t) { return Math.min(NC - 1, Math.max(0, Math.floor(t / END * NC))); }
+  // Columns c0..c1 merged: min of mins, max of maxes, the limit most columns have (and the highest
+  // speed seen under it), the limit at the highest speed.  Every value and colour comes from a column.
   function reduce(S, c0, c1) {
-    var lo = Infinity, hi = -Infinity, line = -1, count = new Array(D.limits.length).fill(0);
+    var lo = Infinity, hi = -Infinity, line = -1, top = -1, count = new Array(D.limits.length).fill(0);
     for (var c = c0; c < c1; c++) {
       if (S.vmax[c] < 0) continue;
       if (S.vmin[c] < lo) lo = S.vmin[c];
-      if (S.vmax[c] > hi) { hi = S.vmax[c]; line = S.line[c]; }
+      if (S.vmax[c] > hi) { hi = S.vmax[c]; line = S.line[c]; top = S.top ? S.top[c] : -1; }
       if (S.limit[c] >= 0) count[S.limit[c]]++;
     }
-    var lim = -1, best = 0;
+    var lim = -1, best = 0, vlim = -1;
     for (var k = 0; k < count.length; k++) if (count[k] > best) { best = count[k]; lim = k; }
-    return {lo: lo, hi: hi, limit: lim, line: line};
+    if (S.vlimit) for (c = c0; c < c1; c++) if (S.limit[c] === lim && S.vlimit[c] > vlim) vlim = S.vlimit[c];
+    return {lo: lo, hi: hi, limit: lim, line: line, top: top, vlim: vlim};
   }
   function drawSpeed() {
     var cv = el('speed'), g = setup(cv), ctx = g.ctx;
@@ -147,10 +151,15 @@
     units.forEach(function (u) {
       var r = reduce(SP, u.c0, u.c1); u.r = r;
       if (r.hi < 0) return;
-      ctx.fillStyle = r.limit >= 0 ? COL.limit[D.limits[r.limit]] : '#000';
       var ya = Y(r.hi), yb = Y(r.lo), w = Math.max(u.x1 - u.x0, 1);
       if (yb - ya < 2) { ya -= 1; yb = ya + 2; }
+      ctx.fillStyle = r.limit >= 0 ? COL.limit[D.limits[r.limit]] : '#000';
       ctx.fillRect(u.x0, ya, w, yb - ya);
+      if (r.top >= 0 && r.top !== r.limit && r.vlim >= 0 && r.hi > r.vlim) {  // above the speeds under the
+        var ym = Y(r.vlim);                                                     // main limit: the top's limit
+        ctx.fillStyle = COL.limit[D.limits[r.top]];
+        ctx.fillRect(u.x0, ya, w, Math.max(ym - ya, 1));
+      }
     });
     if (selected !== null) {
       ctx.strokeStyle = '#000'; ctx.lineWidth = 2;
@@ -166,7 +175,7 @@
     return null;
   }
   function setRange(t0, t1) {
-    var minSpan = END / NC * 8;
+    var minSpan = END / NC * 2;
     if (t1 - t0 < minSpan) { var m = (t0 + t1) / 2; t0 = m - minSpan / 2; t1 = m + minSpan / 2; }
     if (t1 - t0 > END) { t0 = 0; t1 = END; }
     if (t0 < 0) { t1 -= t0; t0 = 0; }
@@ -200,7 +209,8 @@
       var u = unitAt(e.offsetX);
       if (!u || !u.r || u.r.hi < 0) { showTip(0, 0, null); return; }
       var t = tAt(e.offsetX), txt = hms(t) + ' (' + fmt(t) + ' s): ' + fmt(u.r.lo) + (u.r.hi > u.r.lo ? '–' + fmt(u.r.hi) : '') +
-        ' mm/min, limited by ' + (u.r.limit >= 0 ? D.limits[u.r.limit].replace('_', ' ') : '?');
+        ' mm/min, limited by ' + (u.r.limit >= 0 ? D.limits[u.r.limit].replace('_', ' ') : '?') +
+        (u.r.top >= 0 && u.r.top !== u.r.limit ? ' (the peak by ' + D.limits[u.r.top].replace('_', ' ') + ')' : '');
       if (u.n && u.n.hi >= 0) txt += '; ' + NOM.label + ' ' + fmt(u.n.hi);
       showTip(e.pageX, e.pageY, txt + '\n' + describe(u.r.line));
     });
@@ -381,6 +391,11 @@
     project: function (name, x, y, z) {
       var r = VIEWS[name].canvas.getBoundingClientRect(), q = projector(name)(x, y, z);
       return [r.left + window.scrollX + q[0], r.top + window.scrollY + q[1]];
+    },
+    speedPoint: function (t) {  // page coordinates of time t on the speed chart (mid-height)
+      var cv = el('speed'), r = cv.getBoundingClientRect(), pw = cv.clientWidth - SM.left - SM.right;
+      return [r.left + window.scrollX + SM.left + (t - view.t0) / (view.t1 - view.t0) * pw,
+              r.top + window.scrollY + SM.top + (cv.clientHeight - SM.top - SM.bottom) / 2];
     },
     select: select,
     selected: function () { return selected === null ? null : LINES[selected] || {i: selected}; },

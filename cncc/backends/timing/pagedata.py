@@ -127,6 +127,7 @@ def _series_doc(col: Column, c: Columns, total: float) -> dict[str, Any]:
     vmax = float(np.nanmax(c.vmax)) if np.isfinite(c.vmax).any() else 0.0
     return {"label": col.run.label, "vmin": b64(np.nan_to_num(c.vmin, nan=-1.0), "f4"),
             "vmax": b64(np.nan_to_num(c.vmax, nan=-1.0), "f4"), "limit": b64(c.limit, "i1"),
+            "top": b64(c.top_limit, "i1"), "vlimit": b64(np.nan_to_num(c.vlimit, nan=-1.0), "f4"),
             "line": b64(c.line, "i4"), "max": vmax, "end_s": total}
 
 

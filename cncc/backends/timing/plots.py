@@ -70,8 +70,12 @@ def feed_plot(rep: TimingReport, n_cmds: int, width: int = 900, height: int = 30
         y0, y1 = f.py(float(c.vmax[k])), f.py(float(c.vmin[k]))
         if y1 - y0 < 2:
             y0, y1 = y0 - 1, y0 + 1
-        w = max(f.px(edges[k + 1]) - f.px(edges[k]), 1.0)
-        bars.setdefault(int(c.limit[k]), []).append(f"M{f.px(edges[k]):.1f} {y0:.1f}h{w:.1f}V{y1:.1f}h{-w:.1f}z")
+        x, w = f.px(edges[k]), max(f.px(edges[k + 1]) - f.px(edges[k]), 1.0)
+        bars.setdefault(int(c.limit[k]), []).append(f"M{x:.1f} {y0:.1f}h{w:.1f}V{y1:.1f}h{-w:.1f}z")
+        if c.top_limit[k] >= 0 and c.top_limit[k] != c.limit[k] and c.vmax[k] > c.vlimit[k]:
+            ym = f.py(float(c.vlimit[k]))  # above the speeds under the column's main limit: the peak's limit
+            bars.setdefault(int(c.top_limit[k]), []).append(
+                f"M{x:.1f} {y0:.1f}h{w:.1f}V{max(ym, y0 + 1):.1f}h{-w:.1f}z")
     for lim, segs in sorted(bars.items()):
         name = MOTION_LIMITS[lim] if 0 <= lim < len(MOTION_LIMITS) else "none"
         body.append(f'<path d="{"".join(segs)}" fill="{LIMIT_COLORS[name]}"/>')
