@@ -176,6 +176,17 @@ def test_contour_page_in_chromium(browser: Browser, tmp_path: Path) -> None:
     assert browser.js("cnccTiming.selected()")["line"] == n011
     rng = browser.js("cnccTiming.speedRange()")
     assert rng[1] - rng[0] < 0.5 * built.data()["end_s"]
+    # dragging the 3-D view turns it: the projection of a corner moves
+    browser.scroll_to("#view-iso")
+    time.sleep(0.1)
+    before = browser.js("cnccTiming.project('iso', 55, 45, -10)")
+    sx, sy = browser.js("[window.scrollX, window.scrollY]")
+    x0, y0 = browser.js("cnccTiming.project('iso', 27.5, 22.5, 0)")
+    for kind, dx in (("mousePressed", 0), ("mouseMoved", 40), ("mouseMoved", 80), ("mouseReleased", 80)):
+        browser.call("Input.dispatchMouseEvent", {"type": kind, "x": x0 - sx + dx, "y": y0 - sy, "button": "left",
+                                                  "clickCount": 1})
+    after = browser.js("cnccTiming.project('iso', 55, 45, -10)")
+    assert abs(after[0] - before[0]) + abs(after[1] - before[1]) > 10
     assert browser.console == []
 
 

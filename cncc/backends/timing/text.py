@@ -121,7 +121,7 @@ def _line_table(rep: TimingReport, rows: list[LineRow], title: str, labels: list
     rest = width - sum(widths) - 3 * len(heads)
     t = Table(title=title, title_justify="left", show_edge=False, pad_edge=False)
     for k, (h, w) in enumerate(zip(heads, widths, strict=True)):
-        t.add_column(h, justify="left" if k == 1 or k == len(heads) - 1 else "right", no_wrap=True, min_width=w)
+        t.add_column(h, justify="left" if k == 1 or k == len(heads) - 1 else "right", min_width=w, max_width=w)
     t.add_column("block", overflow="ellipsis", no_wrap=True, max_width=max(rest, 8))
     for cells, text in body:
         t.add_row(*(escape(c) for c in cells), escape(text))
