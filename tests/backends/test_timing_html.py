@@ -215,3 +215,36 @@ def test_odd_pages_load_without_console_errors(browser: Browser, tmp_path: Path,
     page.write_text(compile_text(program, emit="timing", report_format="html", opt_level=0).output)
     browser.open(page.as_uri())
     assert browser.console == []
+
+
+def test_contour_extents_and_path_lengths() -> None:
+    path = contour().data()["path"]
+    # examples/contour.nc: X0..55, Y0..45, Z-10..10 (the rapid N004 to Z10, the plunge N005 to Z-10)
+    assert path["lo"] == pytest.approx([0.0, 0.0, -10.0], abs=1e-6)
+    assert path["hi"] == pytest.approx([55.0, 45.0, 10.0], abs=1e-6)
+    # feed: plunge 20, N006 38, N007 hypot(20, 7), N008 35, N009 35, the R10 quarter arc, N011 45
+    feed = 20 + 38 + np.hypot(20, 7) + 35 + 35 + np.pi * 10 / 2 + 45
+    assert path["feed_mm"] == pytest.approx(feed, abs=0.2)  # corners blended within 0.01 mm at -O2
+    assert path["rapid_mm"] == pytest.approx(10 + 20, abs=0.05)  # N004 up 10 from the start at 0, N012 up 20
+    assert path["holes_total"] == 0
+    page = contour().page
+    assert "Minimum Z <b>-10.000 mm</b>" in page
+
+
+@pytest.mark.slow
+def test_100k_page_marks_every_drilled_hole() -> None:
+    built = big()
+    path = built.data()["path"]
+    text = built.text
+    g81 = next(ln for ln in text.splitlines() if ln.startswith("G81"))
+    bottom = float(re.search(r"Z(-?[\d.]+)", g81).group(1))  # type: ignore[union-attr]
+    start = text.splitlines().index(g81)
+    holes = [(10.0, 10.0)]
+    for ln in text.splitlines()[start + 1:]:
+        m = re.fullmatch(r"X([\d.]+) Y([\d.]+)", ln)
+        if not m:
+            break
+        holes.append((float(m.group(1)), float(m.group(2))))
+    assert path["holes_total"] == len(holes)
+    got = np.array(path["holes"])
+    assert np.allclose(got[:, :2], np.array(holes)[: len(got)]) and np.allclose(got[:, 2], bottom)
