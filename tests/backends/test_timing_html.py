@@ -248,3 +248,14 @@ def test_100k_page_marks_every_drilled_hole() -> None:
     assert path["holes_total"] == len(holes)
     got = np.array(path["holes"])
     assert np.allclose(got[:, :2], np.array(holes)[: len(got)]) and np.allclose(got[:, 2], bottom)
+
+
+def test_tool_table_lists_the_offsets_each_tool_used() -> None:
+    from tests.backends.timing_pages import shop_program
+
+    # the generator: T1 with G43 H1, T2 with G43 H2 and G41 D2 (its contour), T3 with G43 H3
+    page = compile_text(shop_program(2000), emit="timing", report_format="html", opt_level=1).output
+    tools = page[page.index("<h2>Tools</h2>"):page.index("<h2>The ")]
+    assert "<td class=l>T1</td><td class=l>–</td><td class=l>H1</td>" in tools
+    assert "<td class=l>T2</td><td class=l>D2</td><td class=l>H2</td>" in tools
+    assert "<td class=l>T3</td><td class=l>D2</td><td class=l>H3</td>" in tools  # D stays selected after G40

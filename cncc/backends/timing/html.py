@@ -104,7 +104,7 @@ def _lines(rep: TimingReport, rows: Sequence[LineRow], elapsed: bool) -> str:
 
 def _tools(rep: TimingReport, cmds: Sequence[Command]) -> str:
     cols = rep.columns
-    head = "<th class=l>tool</th><th class=l>D used</th><th class=l>H used</th>"
+    head = "<th class=l>tool</th><th class=l>D in force</th><th class=l>H in force</th>"
     head += "".join(f"<th>{escape(c.run.label)} [s]</th>" for c in cols) + "<th>share</th>"
     body = []
     total = rep.primary.total_ns
@@ -203,6 +203,8 @@ shows the lowest and highest speed in its time span, in the colour of the constr
 <div class=views>{views}</div>
 {extents}
 <h2>Tools</h2>{_tools(rep, cmds)}
+<p class=note>D and H: the cutter-compensation and tool-length numbers selected while the tool was in the
+spindle (both stay selected until changed).</p>
 <div>{tool_plot(rep, 900)}</div>
 <h2>The {rep.top_n} slowest blocks</h2>{_lines(rep, top, False)}
 <h2>Time per line</h2>{op}{_lines(rep, shown, True)}{more}

@@ -29,7 +29,7 @@ from cncc.backends.timing import sampling
 from cncc.backends.timing.decimate import Columns, douglas_peucker, speed_columns
 from cncc.backends.timing.events import CATEGORIES
 from cncc.backends.timing.model import MOTION_LIMITS, NS_PER_S, Column, TimingReport, to_s
-from cncc.ir import Command, CompSide, Linear
+from cncc.ir import Command, Linear
 
 if TYPE_CHECKING:
     import numpy as np
@@ -220,7 +220,7 @@ def drill_holes(cmds: Sequence[Command]) -> list[list[float]]:
 
 
 def tool_table(rep: TimingReport, cmds: Sequence[Command]) -> list[dict[str, Any]]:
-    """Per tool: the D and H offsets its moves used and its time in every column."""
+    """Per tool: the D and H numbers in force in its commands and its time in every column."""
     d_used: dict[int, set[int]] = {}
     h_used: dict[int, set[int]] = {}
     tools = rep.index.cmd_tool.tolist()
@@ -230,7 +230,7 @@ def tool_table(rep: TimingReport, cmds: Sequence[Command]) -> list[dict[str, Any
         if frame is None or frame is last_frame:
             continue
         last_frame = frame
-        if frame.comp_side is not CompSide.OFF and frame.comp_index:
+        if frame.comp_index:  # the D in force (cutter-comp has applied the radius: the side is off by now)
             d_used.setdefault(t, set()).add(frame.comp_index)
         if frame.tool_length_index:
             h_used.setdefault(t, set()).add(frame.tool_length_index)
