@@ -105,8 +105,14 @@ def speed_series(col: Column, rep: TimingReport, n_cmds: int, edges: F64) -> tup
     shift = event_shift_s(col, n_cmds)
     kc, _ = sampling.at(traj, knots)
     knot_wall = knots + shift[np.clip(kc, 0, n_cmds - 1)]
+    bands = event_bands(col)
     inside = edges[edges <= total]
-    edge_t = np.clip(_wall_to_traj(inside, event_bands(col)), 0.0, traj.duration_total_s)
+    if bands:  # an edge within an event is no motion sample: the band is drawn there instead
+        b0 = np.array([b[0] for b in bands])
+        b1 = np.array([b[1] for b in bands])
+        k = np.searchsorted(b0, inside, side="right") - 1
+        inside = inside[(k < 0) | (inside >= b1[np.maximum(k, 0)])]
+    edge_t = np.clip(_wall_to_traj(inside, bands), 0.0, traj.duration_total_s)
     t = np.concatenate((knots, edge_t))
     wall = np.concatenate((knot_wall, inside))
     order = np.argsort(wall, kind="stable")
@@ -116,7 +122,7 @@ def speed_series(col: Column, rep: TimingReport, n_cmds: int, edges: F64) -> tup
     cmd, lim = sampling.at(traj, t)
     line = rep.index.cmd_line[np.clip(cmd, 0, n_cmds - 1)]
     edge_v = np.full(len(edges), np.nan)
-    edge_v[: len(inside)] = np.linalg.norm(traj.sample(edge_t)[1][:, :3], axis=1) * 60.0
+    edge_v[np.searchsorted(edges, inside)] = np.linalg.norm(traj.sample(edge_t)[1][:, :3], axis=1) * 60.0
     c = speed_columns(wall, speed, lim, line, edges, len(MOTION_LIMITS), edge_v)
     return _series_doc(col, c, total), c
 
