@@ -37,3 +37,55 @@ def cam_program(n_lines: int, seed: int = 1) -> str:
             out.append(f"G1 X{x:.3f} Y{y:.3f} Z{z:.3f}")
     out += ["G00 Z5.0", "M30"]
     return "\n".join(out) + "\n"
+
+
+def shop_program(n_lines: int, seed: int = 2) -> str:
+    """A milling job of about ``n_lines`` lines (SYNTEC): T1 roughs a rectangular pocket by
+    zig-zag raster passes at several depths, T2 finishes its contour (lines and arcs, cutter
+    compensation D2), T3 drills a grid of holes with a G81 cycle.  Each tool has its H offset."""
+    rnd = random.Random(seed)
+    out = ["%", "O2000 (generated pocket, contour and drilling)", "G90 G17 G71 G94 G54",
+           "T1 M06", "S8000 M03", "G43 H1 G00 Z10.0", "G00 X0.0 Y0.0"]
+    holes = max(4, n_lines // 200)
+    contour_lines = max(8, n_lines // 20)
+    raster_lines = max(20, n_lines - contour_lines - holes - 40)
+    width, height = 120.0, 80.0
+    step = 0.5
+    passes = int(height / step)
+    levels = max(1, raster_lines // (2 * passes + 3))
+    n = 0
+    for level in range(levels):
+        z = -0.5 * (level % 20 + 1)
+        out += ["G00 X0.0 Y0.0", "G00 Z1.0", f"G01 Z{z:.3f} F400"]
+        y = 0.0
+        for k in range(passes):
+            x_end = width if k % 2 == 0 else 0.0
+            out.append(f"G01 X{x_end:.3f} Y{y:.3f} F{2400 if k % 7 else 1800}")
+            y = round(y + step, 3)
+            out.append(f"Y{y:.3f}")
+            n += 2
+            if n >= raster_lines:
+                break
+        out.append("G00 Z10.0")
+        if n >= raster_lines:
+            break
+    out += ["T2 M06", "S10000 M03", "G43 H2 G00 Z10.0", "G00 X-5.0 Y-5.0", "G01 Z-10.0 F600", "G41 D2 G01 X0.0 Y0.0"]
+    r = 5.0
+    laps = max(1, contour_lines // 8)
+    for lap in range(laps):
+        d = 0.02 * (lap % 10)
+        out += [f"G01 X{width - r:.3f} Y{-d:.3f} F1200",
+                f"G03 X{width + d:.3f} Y{r:.3f} I0.0 J{r + d:.3f}",
+                f"G01 Y{height - r:.3f}",
+                f"G03 X{width - r:.3f} Y{height + d:.3f} I{-r - d:.3f} J0.0",
+                f"G01 X{r:.3f}",
+                f"G03 X{-d:.3f} Y{height - r:.3f} I0.0 J{-r - d:.3f}",
+                f"G01 Y{r:.3f}",
+                f"G03 X{r:.3f} Y{-d:.3f} I{r + d:.3f} J0.0"]
+    out += ["G40 G01 X-5.0 Y-5.0", "G00 Z10.0", "T3 M06", "S3000 M03", "G43 H3 G00 Z10.0",
+            f"G81 X10.0 Y10.0 Z-{rnd.choice((6, 8, 12))}.0 R2.0 F300"]
+    cols = max(2, int(holes ** 0.5))
+    for k in range(1, holes):
+        out.append(f"X{10.0 + (k % cols) * 100.0 / cols:.3f} Y{10.0 + (k // cols) * 60.0 / cols:.3f}")
+    out += ["G80", "G00 Z50.0", "G04 X1.0", "M05", "M30", "%"]
+    return "\n".join(out) + "\n"

@@ -25,6 +25,7 @@ SCRIPTS = [
     ("pulses.py", ["--steps", "100000000"], ["--steps", "2000000", "--repeat", "1"]),
     ("lsp.py", [], ["--lines", "2000", "--edits", "3"]),
     ("pipeline.py", [], ["--lines", "20000"]),
+    ("report.py", [], ["--quick"]),
 ]
 
 

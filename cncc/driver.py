@@ -8,6 +8,7 @@ never raises on bad input: everything goes into the :class:`DiagnosticSink`.
 from __future__ import annotations
 
 import os
+import shutil
 import sys
 import tempfile
 from collections.abc import Callable, Iterable, Iterator
@@ -517,8 +518,9 @@ def run_backend(cmds: Iterator[Command], src: SourceFile, sources: SourceMap, di
         if keep_runs is not None:
             keep_runs.extend(runs)
         color = opts.output in (None, "-") and sys.stdout.isatty()
+        width = shutil.get_terminal_size().columns if color else None  # the text report fits the terminal
         return timing_report(cmd_list, runs, src, sources, dialect, opts.report_format, sink,
-                             annotate=opts.annotate_time, color=color)
+                             annotate=opts.annotate_time, color=color, width=width)
     if opts.emit == "pulses":
         return pulse_backend(cmds, machine, opts, sink)
     if opts.emit == "none":

@@ -19,7 +19,7 @@ def main() -> None:
     runs = timing_runs(cmds, machine, Options(opt_level=2), DiagnosticSink())
     rep = build_report(cmds, runs, res.sources, example, "syntec")
     Path("docs/timing-contour-speed.svg").write_text(feed_plot(rep, len(cmds)) + "\n")
-    Path("docs/timing-contour-path.svg").write_text(path_plot(rep) + "\n")
+    Path("docs/timing-contour-path.svg").write_text(path_plot(rep, cmds) + "\n")
     print(f"O2 {rep.primary.total_ns / 1e9:.3f} s, nominal {rep.columns[1].total_ns / 1e9:.3f} s")
 
 

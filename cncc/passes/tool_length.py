@@ -40,8 +40,8 @@ class ToolLength(Pass):
             f = c.frame
             entry = cache.get(id(f))
             if entry is None or entry[0] is not f:
-                nf = f if f.tool_length_mm == 0.0 and f.tool_length_index == 0 else replace(
-                    f, tool_length_mm=0.0, tool_length_index=0)
+                # the H number stays (like cutter-comp's D): reports show which offsets a tool used
+                nf = f if f.tool_length_mm == 0.0 else replace(f, tool_length_mm=0.0)
                 entry = cache[id(f)] = (f, nf)
             nf = entry[1]
             if not isinstance(c, Rapid | Linear | Arc):

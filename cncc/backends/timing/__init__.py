@@ -31,7 +31,7 @@ FORMATS = ("text", "json", "html")
 
 def timing_report(cmds: Sequence[Command], runs: Sequence[Run], src: SourceFile, sources: SourceMap,
                   dialect: Dialect, fmt: str, sink: DiagnosticSink, *, annotate: bool = False,
-                  color: bool = False, top_n: int = 10) -> Iterator[str]:
+                  color: bool = False, top_n: int = 10, width: int | None = None) -> Iterator[str]:
     """Render the report of ``runs`` (the first is the primary column) in ``fmt``.
 
     With ``annotate`` the output is instead the program ``src`` with each block's
@@ -59,7 +59,7 @@ def timing_report(cmds: Sequence[Command], runs: Sequence[Run], src: SourceFile,
         return iter((render_html(rep, cmds),))
     from cncc.backends.timing.text import render_text
 
-    return iter((render_text(rep, color),))
+    return iter((render_text(rep, color, width),))
 
 
 def event_pauses(cmds: Sequence[Command], cmd_index: object, machine: MachineModel) -> list[tuple[int, int]]:

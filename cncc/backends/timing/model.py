@@ -144,3 +144,9 @@ class TimingReport:
     def top(self) -> list[LineRow]:
         ranked = sorted(self.lines, key=lambda r: (-r.times_ns[0], r.index))
         return [r for r in ranked[: self.top_n] if r.times_ns[0] > 0]
+
+
+def hms(t_ns: int) -> str:
+    """A duration as ``h:mm:ss`` (``mm:ss`` under an hour is still written ``0:mm:ss``), rounded to the second."""
+    s = max(round(t_ns / NS_PER_S), 0)
+    return f"{s // 3600}:{s // 60 % 60:02d}:{s % 60:02d}"

@@ -1,152 +1,139 @@
-"""The three plots of the HTML report, as SVG text.
+"""Static SVG plots of the timing report (the HTML page's chart of time per tool, the docs' figures).
 
-* :func:`feed_plot`: path speed over wall-clock time, coloured by the limiting
-  constraint of each phase, events (dwells, tool changes ...) as shaded bands, the
-  nominal speed as a dashed line;
-* :func:`path_plot`: the tool path in the XY plane coloured by speed, rapids dashed;
+* :func:`feed_plot`: path speed over wall-clock time, one min/max bar per pixel column
+  coloured by the constraint that held longest in it (:mod:`.decimate`), events as
+  shaded bands, the nominal speed dashed;
+* :func:`path_plot`: the tool path in XY, one colour per tool, rapids dashed, drilled
+  holes circled (the page's decimated path, :func:`.pagedata.tool_path`);
 * :func:`tool_plot`: time per tool, stacked by category, one bar per column.
 
-Consumes a :class:`TimingReport` (its columns' Trajectories).  Large trajectories
-are sampled down to a few thousand points so the page stays small.
+Consumes a :class:`TimingReport`; reads trajectories only through :mod:`.pagedata`.
+The interactive page draws the first two itself (``page.js``); these are for documents.
 """
 
 from __future__ import annotations
 
+import base64
+from collections.abc import Sequence
 from html import escape
 from typing import Any
 
 from cncc.backends.timing.events import CATEGORIES
-from cncc.backends.timing.model import MOTION_LIMITS, NS_PER_S, Column, TimingReport, to_s
-from cncc.backends.timing.svg import CATEGORY_COLORS, LIMIT_COLORS, SPEED_COLORS, Frame, legend, svg
+from cncc.backends.timing.model import MOTION_LIMITS, TimingReport, to_s
+from cncc.backends.timing.pagedata import event_bands, speed_series, tool_path
+from cncc.backends.timing.svg import (
+    CATEGORY_COLORS,
+    HOLE_COLOR,
+    LIMIT_COLORS,
+    RAPID_COLOR,
+    TOOL_COLORS,
+    Frame,
+    legend,
+    svg,
+)
+from cncc.ir import Command
 
-MAX_PHASES_DRAWN = 3000
-SAMPLES = 6000
 
-
-def _event_shift_s(col: Column, n_cmds: int) -> Any:
-    """Seconds of events before each command: wall time = trajectory time + this."""
+def _decode(s: str, dtype: str) -> Any:
     import numpy as np
 
-    ev = np.zeros(n_cmds + 1, dtype=np.int64)
-    for i, ns, *_ in col.event_list:
-        ev[i + 1] += ns
-    return np.cumsum(ev)[:-1] / NS_PER_S
-
-
-def speed_samples(col: Column, n_cmds: int) -> tuple[Any, Any, Any]:
-    """(wall time s, path speed mm/min, limit index) samples of a column's trajectory."""
-    import numpy as np
-
-    traj = col.run.trajectory
-    n = traj.phase_count
-    if n == 0:
-        return np.zeros(0), np.zeros(0), np.zeros(0, dtype=np.int64)
-    if n <= MAX_PHASES_DRAWN:
-        frac = np.array([0.0, 0.5, 1.0 - 1e-9])
-        t = (traj.t0_s[:, None] + traj.duration_s[:, None] * frac).ravel()
-    else:
-        t = np.linspace(0.0, traj.duration_total_s * (1 - 1e-12), SAMPLES)
-    k = np.clip(np.searchsorted(traj.t0_s, t, side="right") - 1, 0, n - 1)
-    _, v, _, _ = traj.sample(t)
-    speed = np.linalg.norm(v[:, :3], axis=1) * 60.0
-    wall = t + _event_shift_s(col, n_cmds)[traj.cmd_index[k]]
-    return wall, speed, traj.limit[k].astype(np.int64)
-
-
-def _events(rep: TimingReport, col: Column) -> list[tuple[float, float, str]]:
-    import numpy as np
-
-    end = np.cumsum(col.cmd_ns)
-    return [(to_s(int(end[i]) - ns), to_s(int(end[i])), cat) for i, ns, cat, _op, _w in col.event_list if ns > 0]
+    return np.frombuffer(base64.b64decode(s), dtype=np.dtype(dtype).newbyteorder("<"))
 
 
 def feed_plot(rep: TimingReport, n_cmds: int, width: int = 900, height: int = 300) -> str:
+    import numpy as np
+
     col = rep.primary
-    wall, speed, lim = speed_samples(col, n_cmds)
     nominal = rep.columns[rep.nominal] if rep.nominal not in (None, 0) else None
-    top = float(speed.max()) if len(speed) else 1.0
-    if nominal is not None:
-        _nw, nsp, _ = speed_samples(nominal, n_cmds)
-        top = max(top, float(nsp.max()) if len(nsp) else 0.0)
-    f = Frame(width - 150, height, 0.0, max(to_s(col.total_ns), 1e-6), 0.0, top * 1.05 or 1.0)
+    end = max(to_s(col.total_ns), 1e-6)
+    f = Frame(width - 150, height, 0.0, end, 0.0, 1.0)
+    px = int(f.width - f.left - f.right)
+    edges = np.linspace(0.0, end, px + 1)
+    _, c = speed_series(col, rep, n_cmds, edges)
+    nc = speed_series(nominal, rep, n_cmds, edges)[1] if nominal is not None else None
+    top = max(float(np.nanmax(c.vmax)) if np.isfinite(c.vmax).any() else 0.0,
+              float(np.nanmax(nc.vmax)) if nc is not None and np.isfinite(nc.vmax).any() else 0.0)
+    f.y1 = top * 1.05 or 1.0
     body = [f.axes("time [s]", "path speed [mm/min]")]
-    for t0, t1, cat in _events(rep, col):
+    bands = event_bands(col)
+    for t0, t1, cat in bands:
         body.append(f'<rect x="{f.px(t0):.1f}" y="{f.top}" width="{max(f.px(t1) - f.px(t0), 0.5):.1f}" '
-                    f'height="{f.height - f.top - f.bottom}" fill="{CATEGORY_COLORS[cat]}" opacity="0.18">'
+                    f'height="{f.height - f.top - f.bottom}" fill="{CATEGORY_COLORS[cat]}" opacity="0.22">'
                     f'<title>{cat.replace("_", " ")} {t1 - t0:.3f} s</title></rect>')
-    if nominal is not None:
-        nw, nsp, _ = speed_samples(nominal, n_cmds)
-        pts = " ".join(f"{f.px(x):.1f},{f.py(y):.1f}" for x, y in zip(nw, nsp, strict=True))
-        body.append(f'<polyline points="{pts}" fill="none" stroke="#444" stroke-dasharray="4 3" '
-                    f'stroke-width="1"><title>{escape(nominal.run.label)}</title></polyline>')
-    used: list[str] = []
-    start = 0
-    for k in range(1, len(wall) + 1):
-        if k == len(wall) or lim[k] != lim[start]:
-            name = MOTION_LIMITS[int(lim[start])] if 0 <= lim[start] < len(MOTION_LIMITS) else "none"
-            seg = range(max(start - 1, 0), k)
-            pts = " ".join(f"{f.px(wall[j]):.1f},{f.py(speed[j]):.1f}" for j in seg)
-            body.append(f'<polyline points="{pts}" fill="none" stroke="{LIMIT_COLORS[name]}" stroke-width="2"/>')
-            if name not in used:
-                used.append(name)
-            start = k
+    if nc is not None:
+        pts = " ".join(f"{f.px(edges[k]):.1f},{f.py(v):.1f} {f.px(edges[k + 1]):.1f},{f.py(v):.1f}"
+                       for k, v in enumerate(nc.vmax) if np.isfinite(v))
+        body.append(f'<polyline points="{pts}" fill="none" stroke="#222" stroke-dasharray="5 4" '
+                    f'stroke-width="1.2"><title>{escape(nominal.run.label if nominal else "")}</title></polyline>')
+    bars: dict[int, list[str]] = {}
+    for k in np.flatnonzero(np.isfinite(c.vmax)).tolist():
+        y0, y1 = f.py(float(c.vmax[k])), f.py(float(c.vmin[k]))
+        if y1 - y0 < 2:
+            y0, y1 = y0 - 1, y0 + 1
+        x, w = f.px(edges[k]), max(f.px(edges[k + 1]) - f.px(edges[k]), 1.0)
+        bars.setdefault(int(c.limit[k]), []).append(f"M{x:.1f} {y0:.1f}h{w:.1f}V{y1:.1f}h{-w:.1f}z")
+        if c.top_limit[k] >= 0 and c.top_limit[k] != c.limit[k] and c.vmax[k] > c.vlimit[k]:
+            ym = f.py(float(c.vlimit[k]))  # above the speeds under the column's main limit: the peak's limit
+            bars.setdefault(int(c.top_limit[k]), []).append(
+                f"M{x:.1f} {y0:.1f}h{w:.1f}V{max(ym, y0 + 1):.1f}h{-w:.1f}z")
+    for lim, segs in sorted(bars.items()):
+        name = MOTION_LIMITS[lim] if 0 <= lim < len(MOTION_LIMITS) else "none"
+        body.append(f'<path d="{"".join(segs)}" fill="{LIMIT_COLORS[name]}"/>')
+    used = [MOTION_LIMITS[k] for k in sorted(bars) if 0 <= k < len(MOTION_LIMITS)]
     items = [(f"limited by {u.replace('_', ' ')}", LIMIT_COLORS[u]) for u in used]
-    seen = {e[2] for e in _events(rep, col)}
-    items += [(c.replace("_", " "), CATEGORY_COLORS[c]) for c in CATEGORIES if c in seen]
+    seen = {b[2] for b in bands}
+    items += [(cat.replace("_", " "), CATEGORY_COLORS[cat]) for cat in CATEGORIES if cat in seen]
     if nominal is not None:
-        items.append((f"{nominal.run.label} (dashed)", "#444"))
+        items.append((f"{nominal.run.label} (dashed)", "#222"))
     body.append(legend(items, width - 140, 24))
     return svg(width, height, "".join(body), "path speed over time, coloured by the limiting constraint")
 
 
-def _path_segments(col: Column, rep: TimingReport) -> tuple[Any, Any, Any, Any]:
-    """(start xy, end xy, speed mm/min, is-rapid) per drawn segment."""
+def path_plot(rep: TimingReport, cmds: Sequence[Command], width: int = 480, height: int = 420) -> str:
     import numpy as np
 
-    traj = col.run.trajectory
-    n = traj.phase_count
-    step = max(1, -(-n // MAX_PHASES_DRAWN))
-    idx = np.arange(0, n, step)
-    p0 = traj.p0_mm[idx, :2]
-    last = np.minimum(idx + step - 1, n - 1)
-    ends = np.array([traj.end_state(int(k))[0][:2] for k in last]) if len(idx) else np.zeros((0, 2))
-    t_mid = traj.t0_s[idx] + (traj.t0_s[last] + traj.duration_s[last] - traj.t0_s[idx]) / 2
-    _, v, _, _ = traj.sample(t_mid) if len(idx) else (None, np.zeros((0, 3)), None, None)
-    speed = np.linalg.norm(v[:, :3], axis=1) * 60.0
-    rapid = rep.index.cmd_cat[traj.cmd_index[idx]] == CATEGORIES.index("rapid")
-    return p0, ends, speed, rapid
-
-
-def path_plot(rep: TimingReport, width: int = 480, height: int = 420) -> str:
-    p0, p1, speed, rapid = _path_segments(rep.primary, rep)
-    if len(p0):
-        xs = [float(p0[:, 0].min()), float(p1[:, 0].min()), float(p0[:, 0].max()), float(p1[:, 0].max())]
-        ys = [float(p0[:, 1].min()), float(p1[:, 1].min()), float(p0[:, 1].max()), float(p1[:, 1].max())]
-    else:
-        xs, ys = [0.0, 1.0], [0.0, 1.0]
-    span = max(max(xs) - min(xs), max(ys) - min(ys), 1e-3) * 1.08
-    cx, cy = (max(xs) + min(xs)) / 2, (max(ys) + min(ys)) / 2
+    path, _ = tool_path(rep, cmds)
+    n = path.get("n", 0)
+    lo = np.array(path.get("lo", [0.0, 0.0, 0.0]))
+    hi = np.array(path.get("hi", [1.0, 1.0, 1.0]))
+    span = max(float(hi[0] - lo[0]), float(hi[1] - lo[1]), 1e-3) * 1.08
+    cx, cy = (hi[0] + lo[0]) / 2, (hi[1] + lo[1]) / 2
     f = Frame(height, height, cx - span / 2, cx + span / 2, cy - span / 2, cy + span / 2, left=56, right=16,
               top=16, bottom=40)
     body = [f.axes("X [mm]", "Y [mm]")]
-    top = float(speed[~rapid].max()) if (~rapid).any() else 1.0
-    paths: dict[int, list[str]] = {}
-    dashed: list[str] = []
-    for a, b, s, r in zip(p0, p1, speed, rapid, strict=True):
-        seg = f"M{f.px(a[0]):.1f} {f.py(a[1]):.1f}L{f.px(b[0]):.1f} {f.py(b[1]):.1f}"
-        if r:
-            dashed.append(seg)
-        else:
-            paths.setdefault(min(int(s / top * len(SPEED_COLORS)), len(SPEED_COLORS) - 1), []).append(seg)
-    if dashed:
-        body.append(f'<path d="{"".join(dashed)}" stroke="#999" stroke-dasharray="3 3" fill="none"/>')
-    for b, segs in sorted(paths.items()):
-        body.append(f'<path d="{"".join(segs)}" stroke="{SPEED_COLORS[b]}" stroke-width="2" fill="none" '
-                    f'stroke-linecap="round"/>')
-    n = len(SPEED_COLORS)
-    items = [(f"≤ {top * (k + 1) / n:.0f} mm/min", SPEED_COLORS[k]) for k in range(n)] + [("rapid", "#999")]
+    items: list[tuple[str, str]] = []
+    if n:
+        pos = lo + _decode(path["q"], "u2").reshape(-1, 3) / 65535 * np.maximum(hi - lo, 1e-6)
+        flags = _decode(path["flags"], "u1")
+        tool = _decode(path["tool"], "u1")
+        runs: dict[int, list[str]] = {}
+        last_end: dict[int, int] = {}  # per style: the vertex its path ends at
+        for i in range(n - 1):
+            if not flags[i] & 1:
+                continue
+            style = -1 if flags[i] & 2 else int(tool[i])
+            seg = runs.setdefault(style, [])
+            if last_end.get(style) != i:
+                seg.append(f"M{f.px(pos[i, 0]):.1f} {f.py(pos[i, 1]):.1f}")
+            seg.append(f"L{f.px(pos[i + 1, 0]):.1f} {f.py(pos[i + 1, 1]):.1f}")
+            last_end[style] = i + 1
+        for style, segs in sorted(runs.items(), reverse=True):
+            if style < 0:
+                continue
+            body.append(f'<path d="{"".join(segs)}" stroke="{TOOL_COLORS[style % len(TOOL_COLORS)]}" '
+                        f'stroke-width="1.5" fill="none" stroke-linejoin="round"/>')
+            t = path["tools"][style]
+            items.append(("no tool" if t < 0 else f"T{t}", TOOL_COLORS[style % len(TOOL_COLORS)]))
+        if -1 in runs:
+            body.append(f'<path d="{"".join(runs[-1])}" stroke="{RAPID_COLOR}" stroke-dasharray="6 4" '
+                        f'stroke-width="1.2" fill="none"/>')
+            items.append(("rapid (dashed)", RAPID_COLOR))
+        for x, y, _z in path["holes"]:
+            body.append(f'<circle cx="{f.px(x):.1f}" cy="{f.py(y):.1f}" r="3" fill="none" stroke="{HOLE_COLOR}"/>')
+        if path["holes"]:
+            items.append(("drilled hole", HOLE_COLOR))
     body.append(legend(items, height + 8, 24))
-    return svg(height + 130, height, "".join(body), "tool path in XY coloured by speed")
+    return svg(height + 130, height, "".join(body), "tool path in XY, one colour per tool, rapids dashed")
 
 
 def tool_plot(rep: TimingReport, width: int = 900) -> str:

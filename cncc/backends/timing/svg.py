@@ -11,14 +11,19 @@ from dataclasses import dataclass
 from html import escape
 
 LIMIT_COLORS = {
-    "none": "#bcbd22", "feed": "#1f77b4", "accel": "#ff7f0e", "jerk": "#d62728", "corner": "#9467bd",
+    "none": "#6d6d1f", "feed": "#1f77b4", "accel": "#ff7f0e", "jerk": "#d62728", "corner": "#9467bd",
     "axis_velocity": "#8c564b", "step_rate": "#e377c2", "rapid": "#7f7f7f", "centripetal": "#2ca02c",
 }
 CATEGORY_COLORS = {
-    "rapid": "#9e9e9e", "feed": "#1f77b4", "arc": "#6baed6", "dwell": "#f0c419", "tool_change": "#00a6a6",
+    "rapid": "#9e9e9e", "feed": "#1f77b4", "arc": "#6baed6", "dwell": "#d9a400", "tool_change": "#00a6a6",
     "spindle": "#9edae5", "wait": "#7b4173", "reversal": "#637939",
 }
 """Event colours differ from every limit colour: both share the legend of the speed plot."""
+TOOL_COLORS = ("#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#8c564b", "#e377c2", "#17becf", "#ff7f0e")
+"""Feed moves, one colour per tool (in the order the tools appear); no yellow (unreadable on white)."""
+RAPID_COLOR = "#6f6f6f"
+HOLE_COLOR = "#111111"
+SELECTED_COLOR = "#ff9800"
 SPEED_COLORS = ("#440154", "#46327e", "#365c8d", "#277f8e", "#1fa187", "#4ac16d", "#a0da39", "#fde725")
 """Slow to fast (viridis)."""
 
