@@ -9,7 +9,6 @@ from __future__ import annotations
 
 import os
 import sys
-import tempfile
 from collections.abc import Callable, Iterable, Iterator
 from dataclasses import dataclass, field
 from typing import IO, Any, TextIO
@@ -542,33 +541,24 @@ def reversal_events(traj: Any, machine: MachineModel, opts: Options) -> tuple[tu
 
 # ---- outputs ---------------------------------------------------------------------------------
 def write_stream(path: str, inputs: list[str], sink: DiagnosticSink, write: Callable[[IO[bytes]], Any]) -> bool:
-    """Stream ``write(binary file)`` into ``path`` atomically; nothing is kept if errors were reported."""
+    """Stream ``write(binary file)`` into ``path`` (atomically for regular files, in place for devices and
+    FIFOs: :mod:`cncc.outfile`); nothing is kept if errors were reported."""
     real = os.path.realpath(path)
     if any(inp != "-" and os.path.exists(inp) and os.path.realpath(inp) == real for inp in inputs):
         sink.emit(dg.OUTPUT_IS_INPUT, NO_SPAN, f"refusing to overwrite the input file {path}")
         return False
+    from cncc.outfile import write_file
+
     try:
-        fd, tmp = tempfile.mkstemp(prefix=".cncc-", suffix=".tmp", dir=os.path.dirname(real) or ".")
-        try:
-            with os.fdopen(fd, "wb") as fh:
-                write(fh)
-            if sink.has_errors:
-                os.unlink(tmp)
-                return False
-            os.replace(tmp, real)
-        except BaseException:
-            if os.path.exists(tmp):
-                os.unlink(tmp)
-            raise
+        return write_file(path, write, lambda: not sink.has_errors)
     except OSError as exc:
         sink.emit(dg.CANNOT_WRITE, NO_SPAN, f"cannot write {path}: {exc.strerror or exc}")
         return False
-    return True
 
 
 def write_output(text: str, path: str | None, inputs: list[str], sink: DiagnosticSink,
                  stdout: TextIO | None = None) -> bool:
-    """Write ``text`` to ``path`` atomically (``-``/None: stdout); never over an input."""
+    """Write ``text`` to ``path`` (``-``/None: stdout) through :func:`write_stream`; never over an input."""
     if path is None or path == "-":
         (stdout or sys.stdout).write(text)
         return True
