@@ -126,7 +126,8 @@ def lower_straight(  # noqa: C901 - one inlined hot loop: a call per line would 
         line_no += 1
         if stale:
             modal = it.modal
-            ok = not (it.ended or modal.cycle or modal.per_rev or it.frame.polar is not None)  # G16: polar words
+            ok = not (it.ended or modal.cycle or modal.per_rev or it.frame.polar is not None  # G16: polar words
+                      or True in it.frame.held_axes)  # after a transform cancel: ops.target releases axes
             cur = modal.motion
             inc = modal.incremental
             frame = it.frame

@@ -16,7 +16,7 @@ level, non-modal setting codes, motion, then program stops and calls.
 from __future__ import annotations
 
 from collections.abc import Iterable, Iterator
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 from cncc import diagnostics as dg
 from cncc.diagnostics import DiagnosticSink
@@ -34,6 +34,7 @@ from cncc.ir import (
     Units,
     Vec6,
 )
+from cncc.ir.frame import LINEAR_HELD, NOT_HELD
 from cncc.source import Span
 
 # Execution order of the ops within one block (lower runs first).
@@ -192,7 +193,21 @@ class Interpreter:
                         p[3] + old[3] - new[3], p[4] + old[4] - new[4], p[5] + old[5] - new[5])
         if frame.units is not self.frame.units:
             self.reader = WordReader.for_dialect(self.dialect, frame.units)
+        old_frame = self.frame
+        if (frame.scaling, frame.mirror, frame.rotation) != (old_frame.scaling, old_frame.mirror, old_frame.rotation):
+            frame = _hold_after_cancel(old_frame, frame)
         self.frame = frame
+
+    def release_axes(self, axes: Iterable[int]) -> None:
+        """An absolute position was programmed for ``axes``: they no longer keep a cancelled transform's point."""
+        held = self.frame.held_axes
+        if held == NOT_HELD:
+            return
+        new = list(held)
+        for k in axes:
+            new[k] = False
+        if tuple(new) != held:
+            self.frame = replace(self.frame, held_axes=(new[0], new[1], new[2], new[3], new[4], new[5]))
 
     def set_modal(self, group: str, code: CodeDef) -> None:
         """Record the code now in force in ``group`` (for #4001... and hover texts)."""
@@ -265,6 +280,23 @@ class Interpreter:
             self.sink.emit(dg.UNKNOWN_G if w.letter == "G" else dg.UNKNOWN_M, self.word_span(w),
                            f"{code_name(w.letter, tenths)} is not a {self.dialect.name} code")
         return cdef
+
+
+def _hold_after_cancel(old: Frame, new: Frame) -> Frame:
+    """The transforms changed: a cancel keeps the machine where it is, a new transform starts afresh.
+
+    After G50, G50.1, G69 (SZGH G37, G12 ...) the tool stays at the transformed point and
+    the program position of each axis is apart from it until that axis gets an absolute
+    word (SYNTEC §1.2.23, SZGH §3.22/§3.23); where a manual is silent the uncommanded
+    axis does not move either.  ``Frame.held_axes`` carries this to the transform passes.
+    """
+    only_removed = all(
+        n is None or n == o for n, o in ((new.scaling, old.scaling), (new.rotation, old.rotation))
+    ) and (new.mirror is None or new.mirror == old.mirror or (
+        old.mirror is not None and new.mirror.center_mm == old.mirror.center_mm
+        and all(o or not n for n, o in zip(new.mirror.axes, old.mirror.axes, strict=True))))
+    held = LINEAR_HELD if only_removed else NOT_HELD
+    return new if held == new.held_axes else replace(new, held_axes=held)
 
 
 def _m_group(op: str) -> str:

@@ -37,6 +37,7 @@ from cncc.ir import (
     Units,
     Vec6,
 )
+from cncc.ir.frame import NOT_HELD
 
 if TYPE_CHECKING:
     from cncc.frontend.interp import BlockContext, Interpreter
@@ -154,7 +155,27 @@ def target(it: Interpreter, ctx: BlockContext) -> Vec6:
     return (p[0], p[1], p[2], p[3], p[4], p[5])
 
 
+def _release_named(it: Interpreter, ctx: BlockContext, cycle: bool) -> None:
+    """Axes the block gives an absolute position no longer keep a cancelled transform's point.
+
+    In a cycle block only the plane axes are positions (the drilling axis word is the hole
+    bottom; ``expand-cycles`` releases that axis after the positioning move).
+    """
+    if it.frame.held_axes == NOT_HELD:
+        return
+    machine = "machine_coords" in ctx.block_flags
+    if it.modal.incremental and not machine:
+        return
+    plane = it.frame.plane
+    axes = [k for k, letter in enumerate(AXES) if letter in ctx.words
+            and not (cycle and k == plane.normal)]
+    if it.frame.polar is not None and not machine and any(k in (plane.first, plane.second) for k in axes):
+        axes += [plane.first, plane.second]  # a polar radius or angle places both plane axes
+    it.release_axes(axes)
+
+
 def _motion(it: Interpreter, ctx: BlockContext) -> None:
+    _release_named(it, ctx, bool(it.modal.cycle))
     if it.modal.cycle:
         fn = MOTIONS.get("cycle")
         if fn is None:
@@ -469,8 +490,11 @@ def _home_via(it: Interpreter, ctx: BlockContext, c: CodeDef, index: int) -> Non
     if ref is None:
         it.emit_error(dg.BAD_OFFSET_INDEX, ctx.span, f"the machine has no reference position {index}")
         return
+    if not it.modal.incremental:  # an absolute intermediate point (in G91: an increment from the tool)
+        it.release_axes(named)
     ctx.out.append(Rapid(ctx.span, it.frame, it.pos, mid, block_motion(it, ctx), origin=c.name))
     it.pos = mid
+    it.release_axes(named)  # the named axes end at the reference position (SYNTEC §1.2.23: "G28 or G30")
     end = tuple(ref[i] if i in named else mid[i] for i in range(6))
     ctx.out.append(Rapid(ctx.span, it.frame, mid, end, block_motion(it, ctx),  # type: ignore[arg-type]
                          origin=f"{c.name} ref"))  # "ref": the leg no transform applies to
@@ -504,6 +528,7 @@ def _g29(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     if not named:
         return
     mid = tuple(it.reference.point[i] if i in named else it.pos[i] for i in range(6))
+    it.release_axes(named)  # the intermediate point is an absolute position
     ctx.out.append(Rapid(ctx.span, it.frame, it.pos, mid, block_motion(it, ctx), origin=c.name))  # type: ignore[arg-type]
     it.pos = mid  # type: ignore[assignment]
     end = target(it, ctx)  # incremental words are taken from the intermediate point

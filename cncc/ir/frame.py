@@ -109,6 +109,10 @@ class Frame:
     comp_radius_mm: float = 0.0
     comp_index: int = 0  # D number
     incremental: bool = False  # G91 when programmed: transforms rotate/scale the increment (see docs/frames.md)
+    # Axes (X Y Z A B C) whose machine position was kept when a transform was cancelled and that
+    # no absolute word has named since: a move carries them from where the tool really is, by
+    # the programmed increment (zero when the block does not name them).  docs/frames.md.
+    held_axes: tuple[bool, bool, bool, bool, bool, bool] = (False, False, False, False, False, False)
     # Program origin in machine coordinates (work + local + G92), computed once per frame
     # because passes ask for it on every command.
     total_offset_mm: Vec6 = field(init=False, repr=False, compare=False, default=ZERO6)
@@ -140,6 +144,8 @@ class Frame:
 
 
 IDENTITY_FRAME = Frame()
+NOT_HELD: tuple[bool, bool, bool, bool, bool, bool] = (False, False, False, False, False, False)
+LINEAR_HELD: tuple[bool, bool, bool, bool, bool, bool] = (True, True, True, False, False, False)
 
 
 def add_offsets(p: Vec6, frame: Frame) -> Vec6:

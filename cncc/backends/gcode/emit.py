@@ -127,6 +127,7 @@ class GcodeEmitter:
         self.rotation: Rotation | None = None  # the G68 record the output has in force
         self.mirror: Mirror | None = None  # the G51.1 record the output has in force
         self.scaling: Scaling | None = None  # the G51 record the output has in force
+        self.held: tuple[bool, ...] = (False,) * 6  # Frame.held_axes of the last motion
 
     # ---- numbers --------------------------------------------------------------------------
     @property
@@ -218,6 +219,8 @@ class GcodeEmitter:
                            self.code("absolute"), self.code("feed_per_min")])
 
     def _command(self, cmd: Command) -> Iterator[str]:
+        if True in cmd.frame.held_axes and not isinstance(cmd, Rapid | Linear | Arc):  # a cancel (SetMode)
+            self.held = tuple(a or b for a, b in zip(self.held, cmd.frame.held_axes, strict=True))
         match cmd:
             case Rapid() | Linear() | Arc():
                 yield from self._sync(cmd.frame, cmd.start, cancel_cycle=True)
@@ -468,12 +471,20 @@ class GcodeEmitter:
         self.feed = feed_mm_min
         return "F" + fixed(feed_mm_min / self.units.mm_per_unit, max(self.decimals, 3))
 
+    def _released(self, f: Frame) -> tuple[int, ...]:
+        """Axes the source names absolutely again after a transform cancel kept them where the tool was
+        (``Frame.held_axes``): written even when their program value did not change, or the target,
+        which holds them as well, would leave them at the transformed point."""
+        held, self.held = self.held, f.held_axes
+        return tuple(k for k in range(6) if held[k] and not f.held_axes[k])
+
     def _motion(self, cmd: Rapid | Linear | Arc) -> Iterator[str]:
         match cmd:
             case Rapid():
-                yield self.block([self.t.code("rapid"), *self._axes(cmd.start, cmd.end)])
+                yield self.block([self.t.code("rapid"), *self._axes(cmd.start, cmd.end, self._released(cmd.frame))])
             case Linear():
-                words = [self.t.code("linear"), *self._axes(cmd.start, cmd.end), self._feed_word(cmd.feed_mm_min)]
+                words = [self.t.code("linear"), *self._axes(cmd.start, cmd.end, self._released(cmd.frame)),
+                         self._feed_word(cmd.feed_mm_min)]
                 yield self.block(words)
             case Arc():
                 yield from self._arc(cmd)
@@ -493,10 +504,12 @@ class GcodeEmitter:
         projection = t.option("helix_feed", "projection") == "projection"
         code = t.code("arc_ccw" if a.turns > 0 else "arc_cw")
         n = a.plane.normal
+        released = self._released(a.frame)
         for piece in pieces:
             offsets = self._centre_offsets(a, piece.start)
             rise_from = self._start_at(piece.start)[n]
-            words = [code, *self._axes(piece.start, piece.end, always=(i, j))]  # full circles need them too
+            words = [code, *self._axes(piece.start, piece.end, always=(i, j, *released))]  # full circles too
+            released = ()
             words += self._centre_words(a.plane, offsets, piece.sweep_rad, form)
             if piece.turns_extra:
                 words.append(f"{t.turns_word}{piece.turns_extra + 1}")
