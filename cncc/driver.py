@@ -55,6 +55,7 @@ class Options:
     compare: str = ""  # timing report columns: "O0,O1,O2" or machine names (NAME@O1)
     annotate_time: bool = False  # timing: the program with elapsed times as comments
     verbose: bool = False  # -v: notes on what the driver chose (the guessed dialect)
+    start_machine_mm: tuple[float, ...] | None = None  # machine position at the start (default: the G54 zero)
     # translation (--emit=gcode -t, cncc/backends/gcode, docs/translation.md)
     units: str = ""  # --units: "" as programmed, "mm" or "inch"
     line_numbers: bool = False  # -fline-numbers
@@ -183,6 +184,9 @@ def front_end(src: SourceFile, dialect: Dialect, machine: MachineModel, opts: Op
     refs = tuple(tuple(r) + (0.0,) * (6 - len(r)) for r in machine.reference_positions_mm) or ((0.0,) * 6,)
     iopts = InterpOptions(work_offsets_mm=work, tool_lengths_mm=lengths, tool_radii_mm=radii,
                           reference_mm=refs, block_delete=opts.block_delete, strict=opts.strict)  # type: ignore[arg-type]
+    if opts.start_machine_mm is not None:  # the program position of that point in G54
+        m, g54 = tuple(opts.start_machine_mm) + (0.0,) * 6, work.get(1, (0.0,) * 6)
+        iopts.start_mm = (m[0] - g54[0], m[1] - g54[1], m[2] - g54[2], m[3] - g54[3], m[4] - g54[4], m[5] - g54[5])
     return lower(src, dialect, sink, iopts, macro_options(opts, sink, sources, deps))
 
 
@@ -397,7 +401,7 @@ def run_backend(cmds: Iterator[Command], src: SourceFile, sources: SourceMap, di
         eopts = EmitOptions(decimals_mm=opts.decimals_mm, decimals_inch=opts.decimals_inch,
                             line_numbers=opts.line_numbers, units=opts.units,
                             same_dialect=target.name == dialect.name, expand_cycle=expand,
-                            keep_subprograms=opts.keep_subprograms and not opts.expand)
+                            keep_subprograms=opts.keep_subprograms and not opts.expand, from_program_start=True)
         if opts.expand and opts.annotate_time:  # -E --annotate-time
             from cncc.backends.timing import annotated_commands
 

@@ -31,10 +31,11 @@ from cncc.ir import (
     Comment,
     Frame,
     Motion,
+    SetMode,
     Units,
     Vec6,
 )
-from cncc.ir.frame import LINEAR_HELD, NOT_HELD
+from cncc.ir.frame import ALL_HELD, LINEAR_HELD, NOT_HELD
 from cncc.source import Span
 
 # Execution order of the ops within one block (lower runs first).
@@ -106,7 +107,9 @@ class Interpreter:
         units = Units.INCH if dialect.default_units == "inch" else Units.MM
         self.reader = WordReader.for_dialect(dialect, units)
         self.modal = ModalState()
-        self.frame = Frame(units=units, work_offset_mm=self.options.work_offsets_mm.get(1, ZERO6))
+        # No axis has a programmed position yet: the machine starts wherever it is (Frame.held_axes).
+        self.frame = Frame(units=units, work_offset_mm=self.options.work_offsets_mm.get(1, ZERO6),
+                           held_axes=ALL_HELD)
         self.pos: Vec6 = self.options.start_mm
         self.reference = Reference()
         self.ended = False
@@ -198,6 +201,18 @@ class Interpreter:
             frame = _hold_after_cancel(old_frame, frame)
         self.frame = frame
 
+    def hold_axes(self, axes: Iterable[int], ctx: BlockContext) -> None:
+        """The machine moved these axes outside the program (tool change, reference return, G53, probe): the
+        next absolute word of each says where it goes (a translation writes it even if unchanged).  A
+        ``SetMode("held_axes")`` record tells the emitter."""
+        held = list(self.frame.held_axes)
+        for k in axes:
+            held[k] = True
+        new = (held[0], held[1], held[2], held[3], held[4], held[5])
+        if new != self.frame.held_axes:
+            self.frame = replace(self.frame, held_axes=new)
+            ctx.out.append(SetMode(ctx.span, self.frame, "held_axes", new))
+
     def release_axes(self, axes: Iterable[int]) -> None:
         """An absolute position was programmed for ``axes``: they no longer keep a cancelled transform's point."""
         held = self.frame.held_axes
@@ -207,7 +222,8 @@ class Interpreter:
         for k in axes:
             new[k] = False
         if tuple(new) != held:
-            self.frame = replace(self.frame, held_axes=(new[0], new[1], new[2], new[3], new[4], new[5]))
+            self.frame = replace(self.frame, held_axes=(new[0], new[1], new[2], new[3], new[4], new[5]),
+                                 after_cancel=self.frame.after_cancel and True in new[:3])
 
     def set_modal(self, group: str, code: CodeDef) -> None:
         """Record the code now in force in ``group`` (for #4001... and hover texts)."""
@@ -295,8 +311,10 @@ def _hold_after_cancel(old: Frame, new: Frame) -> Frame:
     ) and (new.mirror is None or new.mirror == old.mirror or (
         old.mirror is not None and new.mirror.center_mm == old.mirror.center_mm
         and all(o or not n for n, o in zip(new.mirror.axes, old.mirror.axes, strict=True))))
-    held = LINEAR_HELD if only_removed else NOT_HELD
-    return new if held == new.held_axes else replace(new, held_axes=held)
+    if not only_removed:  # a transform switched on or changed: the held axes stay as they were
+        return new
+    held = tuple(a or b for a, b in zip(new.held_axes, LINEAR_HELD, strict=True))
+    return replace(new, held_axes=held, after_cancel=True)  # type: ignore[arg-type]
 
 
 def _m_group(op: str) -> str:

@@ -138,7 +138,7 @@ class AffinePass(Pass):
             if start == c.start and nf is c.frame:
                 return c
             end, center, turns = c.end, (c.center if isinstance(c, Arc) else c.end), 0
-            if True in c.frame.held_axes and start != c.start:
+            if c.frame.after_cancel and start != c.start:
                 end, center = _carried(c.frame.held_axes, start, c.start, end, center)
         elif c.frame.incremental:
             end = aff.moved(start, c.start, c.end)

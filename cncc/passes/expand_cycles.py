@@ -109,8 +109,7 @@ class _Path:
         transform passes map this rapid there.  (Offset changes already move the program position:
         ``Interpreter.set_frame``.)"""
         f = self.frame
-        if p == self.pos and f.scaling is None and f.mirror is None and f.rotation is None \
-                and True not in f.held_axes:
+        if p == self.pos and f.scaling is None and f.mirror is None and f.rotation is None and not f.after_cancel:
             return
         self.out.append(Rapid(self.c.span, self.frame, self.pos, p, self.motion, self.c.code))
         self.pos = p
