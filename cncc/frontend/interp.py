@@ -111,6 +111,9 @@ class Interpreter:
         self.frame = Frame(units=units, work_offset_mm=self.options.work_offsets_mm.get(1, ZERO6),
                            held_axes=ALL_HELD)
         self.pos: Vec6 = self.options.start_mm
+        o = self.frame.total_offset_mm  # the program start point as a machine position (SZGH G26)
+        self.start_machine_mm: Vec6 = (self.pos[0] + o[0], self.pos[1] + o[1], self.pos[2] + o[2],
+                                       self.pos[3] + o[3], self.pos[4] + o[4], self.pos[5] + o[5])
         self.reference = Reference()
         self.ended = False
         self.group_codes: dict[str, str] = {}

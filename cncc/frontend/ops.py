@@ -602,4 +602,5 @@ def _tool_change(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
 
 from cncc.frontend import cycles as _cycles  # noqa: E402,F401  (canned cycles and hole patterns register here)
 from cncc.frontend import rs274 as _rs274  # noqa: E402,F401  (LinuxCNC/grbl G61, G92.1, G10 L20 ...)
+from cncc.frontend import saved_points as _saved_points  # noqa: E402,F401  (SZGH G25, G61, G26)
 from cncc.frontend import transforms as _transforms  # noqa: E402,F401  (registers G10, G15/G16, G41/G42, G51 ...)
