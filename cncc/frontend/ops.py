@@ -484,6 +484,9 @@ def _g92(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     if changed:
         it.set_frame(replace(it.frame, g92_offset_mm=tuple(shift)))  # type: ignore[arg-type]
         ctx.out.append(SetMode(ctx.span, it.frame, "g92_offset", it.frame.g92_offset_mm))
+        # the preset depends on where the machine is: a translation writes it even when the offset
+        # came out unchanged from the assumed start
+        ctx.out.append(SetMode(ctx.span, it.frame, "g92_preset", tuple(_axes_named(ctx))))
 
 
 @handler("local_offset")

@@ -8,9 +8,9 @@ machine point 13, -7, 25) and their moves compared block by block in machine
 coordinates (work offsets and tool length added: ``tests/translate/motion.py``).  The
 programs mix what used to break this: explicit words equal to the assumed start on the
 first move of an axis (``G00 X0 Y10 Z5``), a tool change before a partial move, G91
-moves of axes the program has not positioned yet, and ``G10 L2 P2`` setting G55 before
+moves of axes the program has not positioned yet, ``G10 L2 P2`` setting G55 before
 moving in it (the target's G10, or the offset folded into the coordinates where the
-target has no G10).  docs/translation.md says what "same motion" means.
+target has no G10), and the other offset-setting forms, G52 and G92.  docs/translation.md says what "same motion" means.
 """
 
 from __future__ import annotations
@@ -30,6 +30,8 @@ METRIC = {"syntec": "G71", "series8": "G71"}
 END = {"linuxcnc": "M2", "grbl": "M2"}
 HAS_G10 = {"fanuc", "syntec", "linuxcnc", "grbl"}
 HAS_TOOL_CHANGE = {"fanuc", "syntec", "szgh", "linuxcnc"}
+HAS_G52 = {"fanuc", "syntec", "szgh", "linuxcnc"}
+HAS_G92 = {"fanuc", "syntec", "szgh", "grbl"}
 
 value = st.sampled_from(["0", "0.", "5.", "-3.5", "12.25", "-20."])
 
@@ -50,6 +52,11 @@ def programs(draw: st.DrawFn) -> tuple[str, str]:
     if src in HAS_G10 and draw(st.booleans()):
         lines.append(f"G10 L2 P2 X{draw(value)} Y{draw(value)} Z{draw(value)}")
         lines += ["G55", f"G00 {words(draw, 2)}", f"G01 {words(draw)} F250.", "G54"]
+    if src in HAS_G52 and draw(st.booleans()):  # a local offset, then moves in it, then cancelled
+        lines += [f"G52 X{draw(value)} Y{draw(value)}", f"G00 {words(draw)}", f"G01 {words(draw)} F350.",
+                  "G52 X0 Y0 Z0"]
+    if src in HAS_G92 and draw(st.booleans()):  # a G92 preset where the tool is
+        lines += [f"G92 {words(draw)}", f"G00 {words(draw)}"]
     if src in HAS_TOOL_CHANGE and draw(st.booleans()):
         lines += ["T2 M06" if src != "linuxcnc" else "T2 M6", f"G00 {words(draw)}"]
         if draw(st.booleans()):
@@ -65,7 +72,7 @@ def run(text: str, dialect: str, start: tuple[float, ...] | None) -> list[tuple[
     return motion(cmds)
 
 
-@settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@settings(max_examples=100, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(programs(), st.sampled_from(TARGETS))
 def test_translation_moves_alike_from_two_start_positions(case: tuple[str, str], target: str) -> None:
     src, text = case

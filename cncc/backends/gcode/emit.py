@@ -134,6 +134,7 @@ class GcodeEmitter:
         self.unknown: set[int] = set(range(6))  # axes the output has not given an absolute position yet
         self.inc_move = False  # the motion being written was programmed in G91
         self.g91_block = False  # ... and moves an unknown axis: its words are written as increments in G91
+        self.g92_force: set[int] = set()  # axes of a G92 preset in the source: written even if unchanged
 
     # ---- numbers --------------------------------------------------------------------------
     @property
@@ -298,6 +299,8 @@ class GcodeEmitter:
             from cncc.backends.gcode.subprograms import call_marker
 
             yield call_marker(self, cmd)
+        elif cmd.name == "g92_preset":
+            self.g92_force |= set(cmd.value)
         elif cmd.name == "work_table":
             yield from self._work_table(*cmd.value)
         elif cmd.name == "path_mode":
@@ -437,14 +440,17 @@ class GcodeEmitter:
             tf.local_mm = f.local_offset_mm
         if (f.tool_length_mm, f.tool_length_index) != (tf.tool_mm, tf.tool_index):
             out += self._tool_length(f)
-        if f.g92_offset_mm != tf.g92_mm and self.t.has("set_origin"):
+        g92 = self.t.code("set_origin") or self.t.code("set_origin_rs274")  # LinuxCNC's G92 presets alike
+        if (f.g92_offset_mm != tf.g92_mm or self.g92_force) and g92:
             machine = add(start, add(f.total_offset_mm, _tool(f)))
             old = tf.g92_mm
             tf.g92_mm = f.g92_offset_mm
             here = sub(machine, tf.offset())
             words = [f"{AXES[i]}{self.text(self.counts(here[i], i), i)}" for i in range(6)
-                     if abs(f.g92_offset_mm[i] - old[i]) > 1e-12]
-            out.append(self.block([self.t.code("set_origin"), *words]))
+                     if abs(f.g92_offset_mm[i] - old[i]) > 1e-12 or i in self.g92_force]
+            self.unknown -= self.g92_force  # a preset gives the axis a program position where it is
+            self.g92_force = set()
+            out.append(self.block([g92, *words]))
         if out:
             self.qpos = None
         return out
