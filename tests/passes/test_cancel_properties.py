@@ -267,3 +267,19 @@ def test_same_programmed_point_after_a_rotation_is_positioned() -> None:
     assert [(round(f.start[0], 6) + 0.0, round(f.start[1], 6) + 0.0) for f in feeds] == [(10.0, 0.0), (0.0, 10.0)]
     for f in feeds:
         assert f.start[:2] == f.end[:2]  # straight down
+
+
+def test_inside_a_cycle_after_a_cancel_the_unnamed_plane_axis_stays() -> None:
+    """After G69 a cycle block naming only X drills at the new X and the Y where the tool is (the rotated
+    Y), and the drilling axis starts from where the tool is, then goes to the absolute R and Z levels."""
+    text = ("G71 G90 G00 X10. Y0 Z20. ;\nG68 X0 Y0 R90. ;\nG01 X20. F100. ;\nG69 ;\n"
+            "G99 G81 X5. Z-5. R2. F300. ;\nG80 ;\nM30 ;\n")
+    moves, errors = moves_by_line(text, "syntec")
+    assert not errors
+    rotated_y = 20.0  # (20, 0) turned by 90 degrees about the origin is (0, 20)
+    cycle = [m for _, m in moves if m.origin == "G81"]
+    feeds = [m for m in cycle if isinstance(m, Linear)]
+    assert [(round(f.start[0], 6), round(f.start[1], 6)) for f in feeds] == [(5.0, rotated_y)]
+    assert [round(f.end[2], 6) for f in feeds] == [-5.0]
+    first = cycle[0]  # positioning: in the plane only, at the height the tool is at
+    assert round(first.end[2], 6) == 20.0 and round(first.end[1], 6) == rotated_y
