@@ -114,6 +114,7 @@ class Interpreter:
         o = self.frame.total_offset_mm  # the program start point as a machine position (SZGH G26)
         self.start_machine_mm: Vec6 = (self.pos[0] + o[0], self.pos[1] + o[1], self.pos[2] + o[2],
                                        self.pos[3] + o[3], self.pos[4] + o[4], self.pos[5] + o[5])
+        self.saved_machine_mm: Vec6 | None = None  # SZGH G25's point (frontend/saved_points.py)
         self.reference = Reference()
         self.ended = False
         self.group_codes: dict[str, str] = {}

@@ -18,8 +18,6 @@ table (1..4) names the single axis.
 
 from __future__ import annotations
 
-import weakref
-from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 from cncc.dialects import CodeDef
@@ -30,15 +28,6 @@ if TYPE_CHECKING:
     from cncc.frontend.interp import BlockContext, Interpreter
 
 _ALL_AXES = (0, 1, 2, 3)  # X Y Z A (the manual's "XYZA")
-
-
-@dataclass(slots=True)
-class _Points:
-    start_machine: Vec6
-    saved_machine: Vec6 | None = None
-
-
-_POINTS: weakref.WeakKeyDictionary[Interpreter, _Points] = weakref.WeakKeyDictionary()
 
 
 def _offset(f: Frame) -> Vec6:
@@ -52,24 +41,16 @@ def _to_machine(p: Vec6, f: Frame) -> Vec6:
     return (p[0] + o[0], p[1] + o[1], p[2] + o[2], p[3] + o[3], p[4] + o[4], p[5] + o[5])
 
 
-def _points(it: Interpreter) -> _Points:
-    pts = _POINTS.get(it)
-    if pts is None:  # the start point is where the program started (the N0000 position)
-        pts = _POINTS[it] = _Points(it.start_machine_mm)
-    return pts
-
-
 @handler("save_point")
 def _g25(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
-    _points(it).saved_machine = _to_machine(it.pos, it.frame)
+    it.saved_machine_mm = _to_machine(it.pos, it.frame)
 
 
 @handler("return_saved", "return_start")
 def _return(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     ctx.axis_used = True
-    pts = _points(it)
-    target = pts.saved_machine if c.op == "return_saved" else None
-    machine = target if target is not None else pts.start_machine  # G61 without G25 acts as G26
+    target = it.saved_machine_mm if c.op == "return_saved" else None
+    machine = target if target is not None else it.start_machine_mm  # G61 without G25 acts as G26
     axes = (c.index - 1,) if c.index else _ALL_AXES
     o = _offset(it.frame)
     end = list(it.pos)
