@@ -59,6 +59,10 @@ EMPTY_PROGRAM = _define("W0107", W, "the program contains no blocks")
 MISSING_VALUE = _define("E0108", E, "an address letter has no value")
 DECIMAL_NOT_ALLOWED = _define("E0109", E, "a decimal point is written where the address takes an integer")
 FULLWIDTH = _define("W0110", W, "full-width punctuation (as in some manuals) was read as its ASCII form")
+EXPONENT_NUMBER = _define("E0160", E, "a number in exponent notation (1e3), which no controller reads; "
+                          "block skipped")
+NUMBER_OVERFLOW = _define("E0161", E, "a number too large for any controller (13 or more integer digits); "
+                          "block skipped")
 
 # --- E02xx: modal interpretation -------------------------------------------------
 UNKNOWN_G = _define("E0201", E, "a G code that the dialect does not define")
@@ -89,6 +93,11 @@ INVALID_ARC = _define("E0253", E, "an arc the dialect cannot make (SERIES 8: sig
 DIALECT_IGNORED = _define("W0254", W, "a word or code the dialect's controller accepts and ignores")
 VENDOR_CYCLE = _define("E0255", E, "a code the manual names without defining its words (SERIES 8 G34-G36, G43, "
                        "G49-G51): it needs a cycle macro")
+ZERO_FEED = _define("E0260", E, "a feed move with F0 (the controller alarms); the move is not made")
+DWELL_WITH_MOTION = _define("E0261", E, "G04 and a move in one block, where the controller reads the block's "
+                            "axis words as the dwell's; neither is run")
+AXIS_WORDS_TAKEN = _define("W0262", W, "a motion code in a block whose axis words another code takes (G92, G52, G10, "
+                           "G51, G51.1, G68): the motion code sets the mode, nothing moves")
 ASSUMED = _define("W0256", W, "the manual leaves this open; the spec's assumption is used (a dialect option)")
 CORNER_INSERT = _define("E0257", E, "a G10 corner that cannot be inserted (next move not a line, setback too long, "
                         "no corner)")
@@ -173,6 +182,7 @@ TOOL_OFFSET_IN_COMP = _define("E0510", E, "G45-G48 tool offset while cutter comp
 ARC_REPAIRED = _define("W0511", W, "an arc's centre was moved to make its radii agree")
 DATA_INPUT = _define("E0512", E, "G10 with a table (L) or entry (P) that cncc does not know")
 OFFSET_NOT_IN_TABLE = _define("W0513", W, "an H or D number that the tool table does not have; 0 is used")
+COMP_NO_OFFSET = _define("W0560", W, "G41/G42 without an offset number (D): the controller runs it with radius 0")
 TRANSFORM_DEFAULT = _define("W0514", W, "a frame code without a value the manual leaves to a parameter; a default used")
 
 # --- E06xx: machine models, planning, verification --------------------------------
@@ -228,6 +238,9 @@ XL_TAP_UNSYNCED = _define("W0816", W, "a tapping cycle is written as plain moves
 XL_ARC_SPLIT = _define("N0817", N, "arcs are split into pieces the target accepts")
 
 # --- language server (cncc/lsp): target checks and the analysis budget ----------
+XL_INCREMENT_UNKNOWN_START = _define("E0860", E, "a G91 move of an axis whose position the program has not set yet "
+                                     "(start, tool change, reference return): the translation would write it "
+                                     "from an assumed position")
 TARGET_UNSUPPORTED = _define("W0890", W, "a code the target dialect has no counterpart for")
 ANALYSIS_STOPPED = _define("N0990", N, "the editor stopped analysing a document at its time budget")
 

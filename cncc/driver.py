@@ -10,7 +10,6 @@ from __future__ import annotations
 import os
 import shutil
 import sys
-import tempfile
 from collections.abc import Callable, Iterable, Iterator
 from dataclasses import dataclass, field
 from typing import IO, Any, TextIO
@@ -57,6 +56,7 @@ class Options:
     compare: str = ""  # timing report columns: "O0,O1,O2" or machine names (NAME@O1)
     annotate_time: bool = False  # timing: the program with elapsed times as comments
     verbose: bool = False  # -v: notes on what the driver chose (the guessed dialect)
+    start_machine_mm: tuple[float, ...] | None = None  # machine position at the start (default: the G54 zero)
     # translation (--emit=gcode -t, cncc/backends/gcode, docs/translation.md)
     units: str = ""  # --units: "" as programmed, "mm" or "inch"
     line_numbers: bool = False  # -fline-numbers
@@ -216,6 +216,9 @@ def front_end(src: SourceFile, dialect: Dialect, machine: MachineModel, opts: Op
     iopts = InterpOptions(work_offsets_mm=work, tool_lengths_mm=lengths, tool_radii_mm=radii,
                           reference_mm=refs, block_delete=opts.block_delete, strict=opts.strict,  # type: ignore[arg-type]
                           machine_m_codes=m_codes)
+    if opts.start_machine_mm is not None:  # the program position of that point in G54
+        m, g54 = tuple(opts.start_machine_mm) + (0.0,) * 6, work.get(1, (0.0,) * 6)
+        iopts.start_mm = (m[0] - g54[0], m[1] - g54[1], m[2] - g54[2], m[3] - g54[3], m[4] - g54[4], m[5] - g54[5])
     return lower(src, dialect, sink, iopts, macro_options(opts, sink, sources, deps))
 
 
@@ -501,7 +504,7 @@ def run_backend(cmds: Iterator[Command], src: SourceFile, sources: SourceMap, di
         eopts = EmitOptions(decimals_mm=opts.decimals_mm, decimals_inch=opts.decimals_inch,
                             line_numbers=opts.line_numbers, units=opts.units,
                             same_dialect=target.name == dialect.name, expand_cycle=expand,
-                            keep_subprograms=opts.keep_subprograms and not opts.expand)
+                            keep_subprograms=opts.keep_subprograms and not opts.expand, from_program_start=True)
         if opts.expand and opts.annotate_time:  # -E --annotate-time
             from cncc.backends.timing import annotated_commands
 
@@ -648,33 +651,24 @@ def reversal_events(traj: Any, machine: MachineModel, opts: Options) -> tuple[tu
 
 # ---- outputs ---------------------------------------------------------------------------------
 def write_stream(path: str, inputs: list[str], sink: DiagnosticSink, write: Callable[[IO[bytes]], Any]) -> bool:
-    """Stream ``write(binary file)`` into ``path`` atomically; nothing is kept if errors were reported."""
+    """Stream ``write(binary file)`` into ``path`` (atomically for regular files, in place for devices and
+    FIFOs: :mod:`cncc.outfile`); nothing is kept if errors were reported."""
     real = os.path.realpath(path)
     if any(inp != "-" and os.path.exists(inp) and os.path.realpath(inp) == real for inp in inputs):
         sink.emit(dg.OUTPUT_IS_INPUT, NO_SPAN, f"refusing to overwrite the input file {path}")
         return False
+    from cncc.outfile import write_file
+
     try:
-        fd, tmp = tempfile.mkstemp(prefix=".cncc-", suffix=".tmp", dir=os.path.dirname(real) or ".")
-        try:
-            with os.fdopen(fd, "wb") as fh:
-                write(fh)
-            if sink.has_errors:
-                os.unlink(tmp)
-                return False
-            os.replace(tmp, real)
-        except BaseException:
-            if os.path.exists(tmp):
-                os.unlink(tmp)
-            raise
+        return write_file(path, write, lambda: not sink.has_errors)
     except OSError as exc:
         sink.emit(dg.CANNOT_WRITE, NO_SPAN, f"cannot write {path}: {exc.strerror or exc}")
         return False
-    return True
 
 
 def write_output(text: str, path: str | None, inputs: list[str], sink: DiagnosticSink,
                  stdout: TextIO | None = None) -> bool:
-    """Write ``text`` to ``path`` atomically (``-``/None: stdout); never over an input."""
+    """Write ``text`` to ``path`` (``-``/None: stdout) through :func:`write_stream`; never over an input."""
     if path is None or path == "-":
         (stdout or sys.stdout).write(text)
         return True

@@ -30,10 +30,10 @@ from cncc.ir import Arc, Command, FeedRate, Linear, Plane
 from cncc.ir.fastnew import new_rapid, new_span
 from cncc.source import SourceFile, Span
 
-_NUM = r"([-+]?[\d.]++)"
+_NUM = r"([-+]?[\d.]{1,12}+)"  # longer numbers take the general path, which refuses overflowing ones
 CAM_LINE = re.compile(
     rf"(?:N\d+ *)?(?:G0*([0-3]) *)?(?:X{_NUM} *)?(?:Y{_NUM} *)?(?:Z{_NUM} *)?(?:I{_NUM} *)?(?:J{_NUM} *)?"
-    rf"(?:F([\d.]++) *)?(;?) *\r?"
+    rf"(?:F([\d.]{{1,12}}+) *)?(;?) *\r?"
 )
 CAM_LINES = re.compile("^" + CAM_LINE.pattern + "$", re.MULTILINE)
 """A plain motion block in canonical order.  The number pattern is loose on purpose
@@ -170,12 +170,13 @@ def lower_straight(  # noqa: C901 - one inlined hot loop: a call per line would 
             feed_mm_min = -1.0 if feed_prog is None else feed_prog * k_pt
             path = modal.path
             p = it.pos
+            holding = not inc and True in frame.held_axes[:3]  # absolute words release them (ops._release_named)
             stale = False
         if ok and end - pos <= MAX_LINE_CHARS:
             g, xs, ys, zs, is_, js, fs, semi = m.groups()
             motion = cur if g is None else _MOTION_OF[g]
             if ((xs is not None or ys is not None or zs is not None) and (semicolon_ok or not semi)
-                    and (fs is not None or feed_mm_min >= 0.0 or motion == "rapid")
+                    and (fs is not None or feed_mm_min > 0.0 or motion == "rapid")
                     and (motion == "linear" or motion == "rapid" if is_ is None and js is None
                          else (motion == "arc_cw" or motion == "arc_ccw") and zs is None
                          and frame.plane is Plane.XY)):
@@ -191,6 +192,8 @@ def lower_straight(  # noqa: C901 - one inlined hot loop: a call per line would 
                         v = float(zs) * (k_pt if "." in zs else k_int)
                         z = z + v if inc else v
                     f_new = float(fs) if fs is not None else -1.0
+                    if f_new == 0.0 and motion != "rapid":
+                        raise ValueError("F0 on a feed move: the general path reports it")
                     ci, cj = p[0], p[1]
                     if is_ is not None:
                         ci += float(is_) * (k_pt if "." in is_ else k_int)
@@ -210,6 +213,13 @@ def lower_straight(  # noqa: C901 - one inlined hot loop: a call per line would 
                         feed_mm_min = f_new * k_pt
                         dirty = True
                         yield FeedRate(new_span(sid, m.start(7) - 1, m.end(7)), frame, feed_mm_min, False)
+                    if holding:
+                        held = frame.held_axes
+                        named = [k for k, text in ((0, xs), (1, ys), (2, zs)) if text is not None and held[k]]
+                        if named:
+                            it.release_axes(named)
+                            frame = it.frame
+                            holding = True in frame.held_axes[:3]
                     span = new(Span)
                     sp_id(span, sid)
                     sp_start(span, pos)

@@ -16,7 +16,7 @@ level, non-modal setting codes, motion, then program stops and calls.
 from __future__ import annotations
 
 from collections.abc import Iterable, Iterator
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 from cncc import diagnostics as dg
 from cncc.diagnostics import DiagnosticSink
@@ -31,9 +31,11 @@ from cncc.ir import (
     Comment,
     Frame,
     Motion,
+    SetMode,
     Units,
     Vec6,
 )
+from cncc.ir.frame import ALL_HELD, LINEAR_HELD, NOT_HELD
 from cncc.source import Span
 
 # Execution order of the ops within one block (lower runs first).
@@ -106,8 +108,14 @@ class Interpreter:
         units = Units.INCH if dialect.default_units == "inch" else Units.MM
         self.reader = WordReader.for_dialect(dialect, units)
         self.modal = ModalState()
-        self.frame = Frame(units=units, work_offset_mm=self.options.work_offsets_mm.get(1, ZERO6))
+        # No axis has a programmed position yet: the machine starts wherever it is (Frame.held_axes).
+        self.frame = Frame(units=units, work_offset_mm=self.options.work_offsets_mm.get(1, ZERO6),
+                           held_axes=ALL_HELD)
         self.pos: Vec6 = self.options.start_mm
+        o = self.frame.total_offset_mm  # the program start point as a machine position (SZGH G26)
+        self.start_machine_mm: Vec6 = (self.pos[0] + o[0], self.pos[1] + o[1], self.pos[2] + o[2],
+                                       self.pos[3] + o[3], self.pos[4] + o[4], self.pos[5] + o[5])
+        self.saved_machine_mm: Vec6 | None = None  # SZGH G25's point (frontend/saved_points.py)
         self.reference = Reference()
         self.ended = False
         self.group_codes: dict[str, str] = {}
@@ -193,7 +201,34 @@ class Interpreter:
                         p[3] + old[3] - new[3], p[4] + old[4] - new[4], p[5] + old[5] - new[5])
         if frame.units is not self.frame.units:
             self.reader = WordReader.for_dialect(self.dialect, frame.units)
+        old_frame = self.frame
+        if (frame.scaling, frame.mirror, frame.rotation) != (old_frame.scaling, old_frame.mirror, old_frame.rotation):
+            frame = _hold_after_cancel(old_frame, frame)
         self.frame = frame
+
+    def hold_axes(self, axes: Iterable[int], ctx: BlockContext) -> None:
+        """The machine moved these axes outside the program (tool change, reference return, G53, probe): the
+        next absolute word of each says where it goes (a translation writes it even if unchanged).  A
+        ``SetMode("held_axes")`` record tells the emitter."""
+        held = list(self.frame.held_axes)
+        for k in axes:
+            held[k] = True
+        new = (held[0], held[1], held[2], held[3], held[4], held[5])
+        if new != self.frame.held_axes:
+            self.frame = replace(self.frame, held_axes=new)
+            ctx.out.append(SetMode(ctx.span, self.frame, "held_axes", new))
+
+    def release_axes(self, axes: Iterable[int]) -> None:
+        """An absolute position was programmed for ``axes``: they no longer keep a cancelled transform's point."""
+        held = self.frame.held_axes
+        if held == NOT_HELD:
+            return
+        new = list(held)
+        for k in axes:
+            new[k] = False
+        if tuple(new) != held:
+            self.frame = replace(self.frame, held_axes=(new[0], new[1], new[2], new[3], new[4], new[5]),
+                                 after_cancel=self.frame.after_cancel and True in new[:3])
 
     def set_modal(self, group: str, code: CodeDef) -> None:
         """Record the code now in force in ``group`` (for #4001... and hover texts)."""
@@ -272,6 +307,25 @@ class Interpreter:
             self.sink.emit(dg.UNKNOWN_G if w.letter == "G" else dg.UNKNOWN_M, self.word_span(w),
                            f"{code_name(w.letter, tenths)} is not a {self.dialect.name} code")
         return cdef
+
+
+def _hold_after_cancel(old: Frame, new: Frame) -> Frame:
+    """The transforms changed: a cancel keeps the machine where it is, a new transform starts afresh.
+
+    After G50, G50.1, G69 (SZGH G37, G12 ...) the tool stays at the transformed point and
+    the program position of each axis is apart from it until that axis gets an absolute
+    word (SYNTEC §1.2.23, SZGH §3.22/§3.23); where a manual is silent the uncommanded
+    axis does not move either.  ``Frame.held_axes`` carries this to the transform passes.
+    """
+    only_removed = all(
+        n is None or n == o for n, o in ((new.scaling, old.scaling), (new.rotation, old.rotation))
+    ) and (new.mirror is None or new.mirror == old.mirror or (
+        old.mirror is not None and new.mirror.center_mm == old.mirror.center_mm
+        and all(o or not n for n, o in zip(new.mirror.axes, old.mirror.axes, strict=True))))
+    if not only_removed:  # a transform switched on or changed: the held axes stay as they were
+        return new
+    held = tuple(a or b for a, b in zip(new.held_axes, LINEAR_HELD, strict=True))
+    return replace(new, held_axes=held, after_cancel=True)  # type: ignore[arg-type]
 
 
 def _m_group(op: str) -> str:

@@ -37,6 +37,7 @@ from cncc.ir import (
     Units,
     Vec6,
 )
+from cncc.ir.frame import NOT_HELD
 
 if TYPE_CHECKING:
     from cncc.frontend.interp import BlockContext, Interpreter
@@ -81,9 +82,24 @@ def run_block(it: Interpreter, ctx: BlockContext) -> None:
             _dispatch(it, ctx, c)
     if not ctx.axis_used and (any(k in ctx.words for k in AXES) or _full_circle(it, ctx)):
         _motion(it, ctx)
+    elif ctx.axis_used and any(k in ctx.words for k in AXES):
+        _note_taken_words(it, ctx, gs)
     for c in ms:
         if c.op not in _M_ORDER:
             _dispatch(it, ctx, c)
+
+
+_AXIS_TAKERS = frozenset({"set_origin", "local_offset", "data_input", "data_input_rs274", "scale_on", "mirror_on",
+                          "mirror_off", "rotate_on"})
+
+
+def _note_taken_words(it: Interpreter, ctx: BlockContext, gs: list[CodeDef]) -> None:
+    """``G92 X0 G01 Y5``: the axis words are G92's; say so rather than drop the G01's move silently."""
+    motion = [c for c in gs if c.group == "motion"]
+    takers = [c for c in gs if c.op in _AXIS_TAKERS]
+    if motion and takers:
+        it.sink.emit(dg.AXIS_WORDS_TAKEN, ctx.span, f"the axis words belong to {takers[0].name}; {motion[0].name} "
+                                                     "sets the motion mode but this block does not move")
 
 
 def _full_circle(it: Interpreter, ctx: BlockContext) -> bool:
@@ -154,7 +170,27 @@ def target(it: Interpreter, ctx: BlockContext) -> Vec6:
     return (p[0], p[1], p[2], p[3], p[4], p[5])
 
 
+def _release_named(it: Interpreter, ctx: BlockContext, cycle: bool) -> None:
+    """Axes the block gives an absolute position no longer keep a cancelled transform's point.
+
+    In a cycle block only the plane axes are positions (the drilling axis word is the hole
+    bottom; ``expand-cycles`` releases that axis after the positioning move).
+    """
+    if it.frame.held_axes == NOT_HELD:
+        return
+    machine = "machine_coords" in ctx.block_flags
+    if it.modal.incremental and not machine:
+        return
+    plane = it.frame.plane
+    axes = [k for k, letter in enumerate(AXES) if letter in ctx.words
+            and not (cycle and k == plane.normal)]
+    if it.frame.polar is not None and not machine and any(k in (plane.first, plane.second) for k in axes):
+        axes += [plane.first, plane.second]  # a polar radius or angle places both plane axes
+    it.release_axes(axes)
+
+
 def _motion(it: Interpreter, ctx: BlockContext) -> None:
+    _release_named(it, ctx, bool(it.modal.cycle))
     if it.modal.cycle:
         fn = MOTIONS.get("cycle")
         if fn is None:
@@ -188,6 +224,11 @@ def feed_mm_min(it: Interpreter, ctx: BlockContext) -> float | None:
             it.modal = it.modal.with_(default_feed_noted=True)
             it.sink.emit(dg.DEFAULT_FEED, ctx.span, f"no F programmed; using the {d.name} default F{f:g}")
         return f * _feed_scale(it)
+    if f == 0.0:  # Fanuc PS0011, LinuxCNC "zero feed rate", grbl error 22: the controller alarms
+        fw = ctx.words.get("F")
+        it.emit_error(dg.ZERO_FEED, it.word_span(fw) if fw is not None else ctx.span,
+                      "F0: a feed move needs a feed rate above 0; the move is not made")
+        return None
     return f * _feed_scale(it)
 
 
@@ -202,6 +243,8 @@ def _rapid(it: Interpreter, ctx: BlockContext, end: Vec6) -> None:
     origin = "G53" if "machine_coords" in ctx.block_flags else ""  # transforms leave G53 moves alone
     ctx.out.append(Rapid(ctx.span, it.frame, it.pos, end, block_motion(it, ctx), origin))
     it.pos = end
+    if origin:
+        it.hold_axes(_axes_named(ctx), ctx)  # in machine terms: the program's next absolute word is written again
 
 
 def _linear(it: Interpreter, ctx: BlockContext, end: Vec6) -> None:
@@ -211,6 +254,8 @@ def _linear(it: Interpreter, ctx: BlockContext, end: Vec6) -> None:
     origin = "G53" if "machine_coords" in ctx.block_flags else ""
     ctx.out.append(Linear(ctx.span, it.frame, it.pos, end, f, block_motion(it, ctx), origin))
     it.pos = end
+    if origin:
+        it.hold_axes(_axes_named(ctx), ctx)
 
 
 def _arc(it: Interpreter, ctx: BlockContext, end: Vec6, clockwise: bool) -> None:
@@ -293,8 +338,17 @@ def _feed_mode(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
 
 @handler("dwell")
 def _dwell(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
-    ctx.axis_used = True
-    pw, xw = ctx.words.get("P"), ctx.words.get("X")
+    time_letters = {letter for letter, kind in c.words.items() if kind.startswith("time")}
+    if time_letters & set(AXES):  # Fanuc family: G04 X is a time, so the block's axis words are the dwell's
+        ctx.axis_used = True
+        moving = [a for a in AXES if a in ctx.words and a not in time_letters]
+        if moving or ("X" in ctx.words and "P" in ctx.words and "P" in time_letters):
+            it.emit_error(dg.DWELL_WITH_MOTION, ctx.span,
+                          f"{c.name} with axis words ({' '.join(moving or ['X'])}): {it.dialect.name} reads a block's "
+                          "axis words as the dwell's; put the move in a block of its own (neither is run)")
+            return
+    # else (LinuxCNC, grbl: only P is a time): the dwell runs, then the block's move (order of execution)
+    pw, xw = ctx.words.get("P"), ctx.words.get("X") if "X" in time_letters else None
     w = pw if pw is not None else xw
     if w is None:
         it.emit_error(dg.BAD_DWELL, ctx.span, f"{c.name} needs a time (X or P)")
@@ -430,6 +484,9 @@ def _g92(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     if changed:
         it.set_frame(replace(it.frame, g92_offset_mm=tuple(shift)))  # type: ignore[arg-type]
         ctx.out.append(SetMode(ctx.span, it.frame, "g92_offset", it.frame.g92_offset_mm))
+        # the preset depends on where the machine is: a translation writes it even when the offset
+        # came out unchanged from the assumed start
+        ctx.out.append(SetMode(ctx.span, it.frame, "g92_preset", tuple(_axes_named(ctx))))
 
 
 @handler("local_offset")
@@ -469,12 +526,16 @@ def _home_via(it: Interpreter, ctx: BlockContext, c: CodeDef, index: int) -> Non
     if ref is None:
         it.emit_error(dg.BAD_OFFSET_INDEX, ctx.span, f"the machine has no reference position {index}")
         return
+    if not it.modal.incremental:  # an absolute intermediate point (in G91: an increment from the tool)
+        it.release_axes(named)
     ctx.out.append(Rapid(ctx.span, it.frame, it.pos, mid, block_motion(it, ctx), origin=c.name))
     it.pos = mid
+    it.release_axes(named)  # the named axes end at the reference position (SYNTEC §1.2.23: "G28 or G30")
     end = tuple(ref[i] if i in named else mid[i] for i in range(6))
     ctx.out.append(Rapid(ctx.span, it.frame, mid, end, block_motion(it, ctx),  # type: ignore[arg-type]
                          origin=f"{c.name} ref"))  # "ref": the leg no transform applies to
     it.pos = end  # type: ignore[assignment]
+    it.hold_axes(named, ctx)  # at the machine's reference, which the program does not know
     flags = tuple(i in named for i in range(6))
     from cncc.frontend.modal import Reference
 
@@ -504,6 +565,7 @@ def _g29(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     if not named:
         return
     mid = tuple(it.reference.point[i] if i in named else it.pos[i] for i in range(6))
+    it.release_axes(named)  # the intermediate point is an absolute position
     ctx.out.append(Rapid(ctx.span, it.frame, it.pos, mid, block_motion(it, ctx), origin=c.name))  # type: ignore[arg-type]
     it.pos = mid  # type: ignore[assignment]
     end = target(it, ctx)  # incremental words are taken from the intermediate point
@@ -538,9 +600,11 @@ def _coolant(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
 def _tool_change(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     it.modal = it.modal.with_(tool_loaded=it.modal.tool_selected)
     ctx.out.append(ToolChange(ctx.span, it.frame, it.modal.tool_selected))
+    it.hold_axes(range(3), ctx)  # the changer may move X Y Z: a translation writes each axis's next word
 
 
 from cncc.frontend import cycles as _cycles  # noqa: E402,F401  (canned cycles and hole patterns register here)
 from cncc.frontend import mcodes as _mcodes  # noqa: E402,F401  (machine M codes, smoothing, G54.1/G154 P)
 from cncc.frontend import rs274 as _rs274  # noqa: E402,F401  (LinuxCNC/grbl G61, G92.1, G10 L20 ...)
+from cncc.frontend import saved_points as _saved_points  # noqa: E402,F401  (SZGH G25, G61, G26)
 from cncc.frontend import transforms as _transforms  # noqa: E402,F401  (registers G10, G15/G16, G41/G42, G51 ...)

@@ -24,6 +24,7 @@ from cncc.diagnostics import DiagnosticSink
 from cncc.dialects import Dialect
 from cncc.frontend import syntax as sx
 from cncc.frontend.linuxcnc.builder import LinuxcncBuilder
+from cncc.frontend.number_check import refused_numbers
 from cncc.frontend.series8.builder import Series8Builder
 from cncc.frontend.szgh_builder import SzghBuilder
 from cncc.source import SourceFile, Span
@@ -304,11 +305,31 @@ class Parser:
         if self._o_marks and line.lstrip()[:1] in self._o_marks:
             lead = len(line) - len(line.lstrip())
             line = line[:lead] + "O" + line[lead + 1:]
+        if self._refuse_numbers(src, line, pos):
+            return
         m = self._plain.fullmatch(line)
         if m is not None:
             yield self._plain_block(line, pos, line_no, m.start("c"), m.group("c"))
         else:
             yield from self._lark_blocks(src, line, pos, line_no)
+
+    def _refuse_numbers(self, src: SourceFile, line: str, base: int) -> bool:
+        """Report exponent notation and overflowing numbers (:mod:`cncc.frontend.number_check`); True: skip."""
+        if self.dialect.option("own_number_checks", False):
+            return False
+        found = False
+        for start, end, kind in refused_numbers(line, self._comments, self._block_end, "E" in self.dialect.addresses):
+            found = True
+            text = line[start:end]
+            if kind == "exponent":
+                self.sink.emit(dg.EXPONENT_NUMBER, Span(src.source_id, base + start, base + end),
+                               f"'{text}' is exponent notation, which controllers do not read; write the digits "
+                               "out; block skipped")
+            else:
+                self.sink.emit(dg.NUMBER_OVERFLOW, Span(src.source_id, base + start, base + end),
+                               f"a number of {len(text.lstrip('0'))} integer digits is beyond any controller's "
+                               "word format; block skipped")
+        return found
 
     def _fullwidth(self, src: SourceFile, line: str, base: int) -> str:
         """Lenient: full-width punctuation (``；（）``, as in some manuals) read as ASCII.

@@ -93,6 +93,7 @@ def _work_entry(it: Interpreter, ctx: BlockContext, table: int, index: int) -> N
             vals[k] = machine - f.local_offset_mm[k] - f.g92_offset_mm[k] - v
     new: Vec6 = (vals[0], vals[1], vals[2], vals[3], vals[4], vals[5])
     it.options.work_offsets_mm[index] = new
+    ctx.out.append(SetMode(ctx.span, it.frame, "work_table", (index, old, new)))  # translation writes it (G10)
     if f.work_index == index and new != f.work_offset_mm:
         it.set_frame(replace(f, work_offset_mm=new))
         ctx.out.append(SetMode(ctx.span, it.frame, "g5x_offset", index))

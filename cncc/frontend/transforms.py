@@ -296,6 +296,9 @@ def _comp(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
         if got is None:
             return
         index = st.d_index = got
+    elif index == 0 and it.dialect.option("comp_without_d_warning", True):
+        it.sink.emit(dg.COMP_NO_OFFSET, ctx.span, f"{c.name} without an offset number D: the controller "
+                                                   "compensates with radius 0 (program D)")
     _set_comp(it, ctx, c.op, index)
 
 
@@ -410,6 +413,7 @@ def _g10_work(it: Interpreter, ctx: BlockContext, c: CodeDef, index: int) -> Non
             vals[k] = vals[k] + v if it.modal.incremental else v
     new: Vec6 = (vals[0], vals[1], vals[2], vals[3], vals[4], vals[5])
     it.options.work_offsets_mm[index] = new
+    ctx.out.append(SetMode(ctx.span, it.frame, "work_table", (index, old, new)))  # translation writes it (G10)
     if it.frame.work_index == index and new != it.frame.work_offset_mm:
         it.set_frame(replace(it.frame, work_offset_mm=new))
         ctx.out.append(SetMode(ctx.span, it.frame, "g5x_offset", index))

@@ -109,6 +109,13 @@ class Frame:
     comp_radius_mm: float = 0.0
     comp_index: int = 0  # D number
     incremental: bool = False  # G91 when programmed: transforms rotate/scale the increment (see docs/frames.md)
+    # Axes (X Y Z A B C) whose machine position is not the program's: none named absolutely yet
+    # since the start, a transform cancel (the tool stays at the transformed point) or an event
+    # that moves the machine outside the program (tool change, reference return, G53).  A move
+    # carries them from where the tool really is by the programmed increment (zero when the
+    # block does not name them); a translation writes their next absolute word.  docs/frames.md.
+    held_axes: tuple[bool, bool, bool, bool, bool, bool] = (False, False, False, False, False, False)
+    after_cancel: bool = False  # a transform was cancelled and X Y Z have not all been named absolutely since
     # Program origin in machine coordinates (work + local + G92), computed once per frame
     # because passes ask for it on every command.
     total_offset_mm: Vec6 = field(init=False, repr=False, compare=False, default=ZERO6)
@@ -140,6 +147,9 @@ class Frame:
 
 
 IDENTITY_FRAME = Frame()
+NOT_HELD: tuple[bool, bool, bool, bool, bool, bool] = (False, False, False, False, False, False)
+LINEAR_HELD: tuple[bool, bool, bool, bool, bool, bool] = (True, True, True, False, False, False)
+ALL_HELD: tuple[bool, bool, bool, bool, bool, bool] = (True, True, True, True, True, True)
 
 
 def add_offsets(p: Vec6, frame: Frame) -> Vec6:

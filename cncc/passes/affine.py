@@ -14,6 +14,9 @@ would cut:
 * **increments**: in G91 (``frame.incremental``) the increment is mapped,
   ``end' = start' + L (end - start)``, so a rotation turns it about the actual start
   (SZGH E002-19); in G90 the programmed point itself is mapped;
+* **held axes**: after a cancel, axes in ``frame.held_axes`` (not named absolutely since)
+  move by their programmed increment from where the tool actually is, so a block
+  that does not name them leaves them where the transform put them;
 * **bypass**: G53 moves and the second leg of G28/G30 (origin ``"... ref"``) are in
   machine terms and are not transformed.
 
@@ -75,6 +78,14 @@ class Affine:
             return False
         a, b, c, d = m[i][i], m[i][j], m[j][i], m[j][j]
         return abs(a * a + c * c - b * b - d * d) < 1e-9 and abs(a * b + c * d) < 1e-9
+
+
+def _carried(held: tuple[bool, ...], start: Vec6, prog_start: Vec6, end: Vec6, center: Vec6) -> tuple[Vec6, Vec6]:
+    """Held axes (``Frame.held_axes``) move by the programmed increment from where the tool is."""
+    d = [start[k] - prog_start[k] if held[k] else 0.0 for k in range(6)]
+    return ((end[0] + d[0], end[1] + d[1], end[2] + d[2], end[3] + d[3], end[4] + d[4], end[5] + d[5]),
+            (center[0] + d[0], center[1] + d[1], center[2] + d[2], center[3] + d[3], center[4] + d[4],
+             center[5] + d[5]))
 
 
 def flip_side(side: CompSide) -> CompSide:
@@ -143,6 +154,8 @@ class AffinePass(Pass):
             if start == c.start and nf is c.frame:
                 return c
             end, center, turns = c.end, (c.center if isinstance(c, Arc) else c.end), 0
+            if c.frame.after_cancel and start != c.start:
+                end, center = _carried(c.frame.held_axes, start, c.start, end, center)
         elif c.frame.incremental:
             end = aff.moved(start, c.start, c.end)
             center = aff.moved(start, c.start, c.center) if isinstance(c, Arc) else end

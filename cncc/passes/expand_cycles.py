@@ -3,7 +3,9 @@
 Consumes :class:`cncc.ir.Cycle` commands (everything else passes through) and yields,
 per hole, the moves the controller makes, in the cycle's own frame:
 
-* positioning: a rapid in the plane at the current height, then a rapid to R;
+* positioning: a rapid in the plane at the current height (under a transform even when
+  it is zero-length in program coordinates: see ``_Path.position``), then its own rapid
+  to R;
 * the cycle's in-feed, bottom action and retract (table in ``docs/cycles.md``);
 * every move has the exact-stop path mode and ``origin`` set to the cycle code.
 
@@ -11,7 +13,7 @@ Tapping moves are bracketed by ``SetMode("spindle_sync", pitch_mm)`` and
 ``SetMode("spindle_sync", 0.0)``: in between, the feed axis follows the spindle
 (feed = rpm x pitch, overrides locked at 100 %).  Spindle reversals, stops, orients
 and restarts are :class:`Spindle` commands; the G88 manual retract is a :class:`Wait`.
-Zero-length moves are left out (a G99 hole starts at R already).
+Other zero-length moves are left out (a G99 hole starts at R already).
 """
 
 from __future__ import annotations
@@ -63,7 +65,9 @@ def expand(c: Cycle) -> list[Command]:
     sequence = SEQUENCES[c.kind]
     for hole in c.holes:
         path.hole = hole
-        path.rapid(path.at(path.pos[c.axis]))
+        path.frame = c.frame
+        path.position(path.at(path.pos[c.axis]))
+        path.frame = path.levels_frame
         sequence(path)
     return path.out
 
@@ -91,6 +95,24 @@ class _Path:
         default = SpindleState.CCW if c.kind is CycleKind.TAP_LEFT else SpindleState.CW
         self.forward = c.spindle if running else default
         self.down = -1.0 if c.bottom_mm < c.r_mm else 1.0
+        self.frame = c.frame
+        held = c.frame.held_axes
+        # After a transform cancel the positioning keeps the drilling axis where the tool is;
+        # R, the bottom and the return levels are absolute positions of that axis.
+        self.levels_frame = c.frame if not held[c.axis] else replace(
+            c.frame, held_axes=tuple(h and k != c.axis for k, h in enumerate(held)))  # type: ignore[arg-type]
+
+    def position(self, p: Vec6) -> None:
+        """The rapid that puts the tool above the hole.  Under a transform (or after a cancel) it is
+        emitted even when it is zero-length in program coordinates: a rotation, mirror or scaling
+        switched since the previous hole puts the hole's machine position elsewhere, and the
+        transform passes map this rapid there.  (Offset changes already move the program position:
+        ``Interpreter.set_frame``.)"""
+        f = self.frame
+        if p == self.pos and f.scaling is None and f.mirror is None and f.rotation is None and not f.after_cancel:
+            return
+        self.out.append(Rapid(self.c.span, self.frame, self.pos, p, self.motion, self.c.code))
+        self.pos = p
 
     def at(self, level: float, shifted: bool = False) -> Vec6:
         p = list(self.hole)
@@ -101,13 +123,13 @@ class _Path:
 
     def rapid(self, p: Vec6) -> None:
         if p != self.pos:
-            self.out.append(Rapid(self.c.span, self.c.frame, self.pos, p, self.motion, self.c.code))
+            self.out.append(Rapid(self.c.span, self.frame, self.pos, p, self.motion, self.c.code))
             self.pos = p
 
     def feed(self, p: Vec6) -> None:
         if p != self.pos:
             c = self.c
-            self.out.append(Linear(c.span, c.frame, self.pos, p, c.feed_mm_min, self.motion, c.code))
+            self.out.append(Linear(c.span, self.frame, self.pos, p, c.feed_mm_min, self.motion, c.code))
             self.pos = p
 
     def lift(self, p: Vec6) -> None:

@@ -119,8 +119,12 @@ def test_e000_33_scaling(example: str) -> None:
 
 
 def test_scaling_cancel_keeps_the_machine_where_it_is() -> None:
+    """After G50 the commanded X goes to its unscaled target; the uncommanded Y stays at the scaled 45
+    (the spec's "machine stays where it is"; issue 17: an uncommanded axis never moves)."""
     moves, _ = path(E000_33.replace("N011 M30 ;", "G01 X10.0 F100\nM30\n"))
-    assert moves[-1].start[:2] == (62.5, 45.0) and ends(moves)[-1] == (10.0, 0.0)
+    assert moves[-1].start[:2] == (62.5, 45.0) and ends(moves)[-1] == (10.0, 45.0)
+    moves, _ = path(E000_33.replace("N011 M30 ;", "G01 X10.0 Y0 F100\nM30\n"))
+    assert ends(moves)[-1] == (10.0, 0.0)  # named absolutely: the program position
 
 
 def test_g50_is_cancel_option_reads_the_code_list() -> None:

@@ -92,6 +92,9 @@ class EmitOptions:
     same_dialect: bool = True  # M codes without a known meaning are copied only within one dialect
     expand_cycle: Callable[[Cycle], Iterable[Command]] | None = None  # for cycles the output cannot keep
     keep_subprograms: bool = False  # mark call boundaries for cncc.backends.gcode.subprograms
+    # A whole program (the machine starts anywhere: every axis's first word is written, and G91 moves of
+    # axes not positioned yet stay G91) rather than a selection whose first position is known.
+    from_program_start: bool = False
 
 
 class GcodeEmitter:
@@ -127,6 +130,11 @@ class GcodeEmitter:
         self.rotation: Rotation | None = None  # the G68 record the output has in force
         self.mirror: Mirror | None = None  # the G51.1 record the output has in force
         self.scaling: Scaling | None = None  # the G51 record the output has in force
+        self.held: tuple[bool, ...] = (True,) * 6  # Frame.held_axes of the last motion (at the start: all)
+        self.unknown: set[int] = set(range(6))  # axes the output has not given an absolute position yet
+        self.inc_move = False  # the motion being written was programmed in G91
+        self.g91_block = False  # ... and moves an unknown axis: its words are written as increments in G91
+        self.g92_force: set[int] = set()  # axes of a G92 preset in the source: written even if unchanged
 
     # ---- numbers --------------------------------------------------------------------------
     @property
@@ -204,6 +212,9 @@ class GcodeEmitter:
             self.span = cmd.span
             if not started and not isinstance(cmd, Comment):  # the modes, in the first command's units
                 started = True
+                if not self.opt.from_program_start:  # a selection (editor) or IR built by hand: start known
+                    self.held = cmd.frame.held_axes
+                    self.unknown = {k for k in range(6) if cmd.frame.held_axes[k]}
                 yield self._preamble(cmd.frame)
             yield from self._command(cmd)
         if not started:
@@ -218,8 +229,16 @@ class GcodeEmitter:
                            self.code("absolute"), self.code("feed_per_min")])
 
     def _command(self, cmd: Command) -> Iterator[str]:
+        tf = self.tf
+        if tf.work_mm is None and cmd.frame.work_index == 1:  # the power-on G54 (before a G55 ... of the program)
+            tf.work_mm = tf.work_tables.setdefault(1, cmd.frame.work_offset_mm)
+        if True in cmd.frame.held_axes and not isinstance(cmd, Rapid | Linear | Arc):  # a cancel (SetMode)
+            self.held = tuple(a or b for a, b in zip(self.held, cmd.frame.held_axes, strict=True))
+        if isinstance(cmd, SetMode) and cmd.name == "held_axes":  # moved outside the program (M06, G28, G53)
+            self.unknown |= {k for k, h in enumerate(cmd.value) if h}
         match cmd:
             case Rapid() | Linear() | Arc():
+                self._check_increment(cmd)
                 yield from self._sync(cmd.frame, cmd.start, cancel_cycle=True)
                 yield from self._motion(cmd)
             case Cycle():
@@ -280,10 +299,33 @@ class GcodeEmitter:
             from cncc.backends.gcode.subprograms import call_marker
 
             yield call_marker(self, cmd)
+        elif cmd.name == "g92_preset":
+            self.g92_force |= set(cmd.value)
+        elif cmd.name == "work_table":
+            yield from self._work_table(*cmd.value)
         elif cmd.name == "path_mode":
             op = "exact_stop_mode" if cmd.value is PathMode.EXACT_STOP else "continuous_mode"
             if self.t.has(op):
                 yield self.block([self.t.code(op)])
+
+    def _work_table(self, index: int, old: Vec6, new: Vec6) -> Iterator[str]:
+        """G10 L2 (or L20, LinuxCNC's G10 L20) set a work offset: the target's ``G10 L2 Pn`` when it has one,
+        else the target keeps its table value and the difference is folded into the coordinates (N0809)."""
+        tf = self.tf
+        tf.work_tables.setdefault(index, old)
+        code = self.t.code("data_input") or self.t.code("data_input_rs274")
+        if not code or not 1 <= index <= 6:
+            return
+        if self.cycle_initial is not None:
+            yield self.block([self.t.code("cycle_off")])
+            self.cycle_initial = None
+        self.sync_poison = True
+        yield self.block([code, "L2", f"P{index}", *self._vector_words(new)])
+        self.sync_poison = False
+        tf.work_tables[index] = new
+        if tf.work_mm is not None and tf.work_index == index:
+            tf.work_mm = new
+            self.qpos = None
 
     def _dwell_word(self, seconds: float) -> str:
         """The dwell word in the target: a word of kind ``time`` in seconds, else ``time_ms``."""
@@ -386,10 +428,10 @@ class GcodeEmitter:
 
     def _offsets(self, f: Frame, start: Vec6) -> list[str]:
         tf, out = self.tf, []
-        if tf.work_mm is None:  # the target's G54 is taken to be the source's
-            tf.work_mm = f.work_offset_mm if f.work_index == 1 else (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+        if tf.work_mm is None:  # the target's G54 is taken to be the source's (as its table had it)
             if f.work_index == 1:
-                tf.work_tables[1] = f.work_offset_mm
+                tf.work_tables.setdefault(1, f.work_offset_mm)
+            tf.work_mm = tf.work_tables[1] if f.work_index == 1 else (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
         if f.work_index != tf.work_index and f.work_index in self.t.work:
             out.append(self.block([self.t.work[f.work_index].name]))
             tf.adopt_work(f)
@@ -398,14 +440,17 @@ class GcodeEmitter:
             tf.local_mm = f.local_offset_mm
         if (f.tool_length_mm, f.tool_length_index) != (tf.tool_mm, tf.tool_index):
             out += self._tool_length(f)
-        if f.g92_offset_mm != tf.g92_mm and self.t.has("set_origin"):
+        g92 = self.t.code("set_origin") or self.t.code("set_origin_rs274")  # LinuxCNC's G92 presets alike
+        if (f.g92_offset_mm != tf.g92_mm or self.g92_force) and g92:
             machine = add(start, add(f.total_offset_mm, _tool(f)))
             old = tf.g92_mm
             tf.g92_mm = f.g92_offset_mm
             here = sub(machine, tf.offset())
             words = [f"{AXES[i]}{self.text(self.counts(here[i], i), i)}" for i in range(6)
-                     if abs(f.g92_offset_mm[i] - old[i]) > 1e-12]
-            out.append(self.block([self.t.code("set_origin"), *words]))
+                     if abs(f.g92_offset_mm[i] - old[i]) > 1e-12 or i in self.g92_force]
+            self.unknown -= self.g92_force  # a preset gives the axis a program position where it is
+            self.g92_force = set()
+            out.append(self.block([g92, *words]))
         if out:
             self.qpos = None
         return out
@@ -452,13 +497,21 @@ class GcodeEmitter:
         q = self._at(end)
         changed = [i for i in range(6) if q[i] != qpos[i] or i in always or (self.all_axes and i < 3)]
         self.all_axes = False
-        if not changed:
-            changed = [self.plane.first]
+        if not changed:  # a null move writes one word: of an axis whose position the output knows
+            p = self.plane
+            known = [i for i in (p.first, p.second, p.normal) if i not in self.unknown]
+            changed = [known[0] if known else p.first]
+            if not known and self.t.code("incremental") and not self.call_depth:
+                self.g91_block = True  # X0 as an increment: no axis is known yet
         words = [f"{AXES[i]}{self.text(q[i], i)}" for i in changed]
+        if self.g91_block:
+            words = [f"{AXES[i]}{self.text(q[i] - qpos[i], i)}" for i in changed]
         if self.call_depth:
             self.inc_poison = bool(self.offgrid & set(changed))  # increments from an unwritable position
             self.inc_words = (words, [f"{AXES[i]}{self.text(q[i] - qpos[i], i)}" for i in changed])
         self.offgrid -= set(changed)
+        if not self.inc_move:
+            self.unknown -= set(changed)
         self.qpos = q
         return words
 
@@ -468,13 +521,48 @@ class GcodeEmitter:
         self.feed = feed_mm_min
         return "F" + fixed(feed_mm_min / self.units.mm_per_unit, max(self.decimals, 3))
 
+    def _check_increment(self, cmd: Rapid | Linear | Arc) -> None:
+        """cncc writes G90 coordinates; a G91 move of an axis whose position is unknown (``self.unknown``: not
+        written since the start, a tool change, a reference return or G53) goes from wherever the machine is."""
+        f = cmd.frame
+        self.inc_move = f.incremental
+        if not f.incremental or not self.unknown:
+            return
+        moved = [k for k in sorted(self.unknown) if abs(cmd.end[k] - cmd.start[k]) > 1e-12]
+        if not moved and self.plane.first in self.unknown and cmd.end == cmd.start:
+            moved = [self.plane.first]  # a null G91 move: its word (X0) must stay an increment too
+        if moved and self.t.code("incremental") and self.t.code("absolute") and not self.call_depth:
+            self.g91_block = True  # written as a G91 block (then G90): the same motion from any start
+        elif moved:
+            axes = " ".join(AXES[k] for k in moved)
+            self.warn(dg.XL_INCREMENT_UNKNOWN_START, f"G91 move of {axes} before the program gives {axes} an absolute "
+                                                     "position: the translation's G90 coordinates assume where the "
+                                                     "machine starts; program an absolute position first", once=False)
+
+    def _g91(self, words: list[str]) -> Iterator[str]:
+        if not self.g91_block:
+            yield self.block(words)
+            return
+        self.g91_block = False
+        yield self.block([self.t.code("incremental"), *words])
+        yield self.block([self.t.code("absolute")])
+
+    def _released(self, f: Frame) -> tuple[int, ...]:
+        """Axes the source names absolutely again after a transform cancel kept them where the tool was
+        (``Frame.held_axes``): written even when their program value did not change, or the target,
+        which holds them as well, would leave them at the transformed point."""
+        held, self.held = self.held, f.held_axes
+        return tuple(k for k in range(6) if held[k] and not f.held_axes[k])
+
     def _motion(self, cmd: Rapid | Linear | Arc) -> Iterator[str]:
         match cmd:
             case Rapid():
-                yield self.block([self.t.code("rapid"), *self._axes(cmd.start, cmd.end)])
+                yield from self._g91([self.t.code("rapid"),
+                                      *self._axes(cmd.start, cmd.end, self._released(cmd.frame))])
             case Linear():
-                words = [self.t.code("linear"), *self._axes(cmd.start, cmd.end), self._feed_word(cmd.feed_mm_min)]
-                yield self.block(words)
+                words = [self.t.code("linear"), *self._axes(cmd.start, cmd.end, self._released(cmd.frame)),
+                         self._feed_word(cmd.feed_mm_min)]
+                yield from self._g91(words)
             case Arc():
                 yield from self._arc(cmd)
 
@@ -493,10 +581,13 @@ class GcodeEmitter:
         projection = t.option("helix_feed", "projection") == "projection"
         code = t.code("arc_ccw" if a.turns > 0 else "arc_cw")
         n = a.plane.normal
+        released = self._released(a.frame)
+        g91 = self.g91_block
         for piece in pieces:
             offsets = self._centre_offsets(a, piece.start)
             rise_from = self._start_at(piece.start)[n]
-            words = [code, *self._axes(piece.start, piece.end, always=(i, j))]  # full circles need them too
+            words = [code, *self._axes(piece.start, piece.end, always=(i, j, *released))]  # full circles too
+            released = ()
             words += self._centre_words(a.plane, offsets, piece.sweep_rad, form)
             if piece.turns_extra:
                 words.append(f"{t.turns_word}{piece.turns_extra + 1}")
@@ -506,7 +597,10 @@ class GcodeEmitter:
                 feed *= helix_feed_ratio(piece.start, _with(piece.end, n, piece.start[n] + rise_mm), a.center,
                                          a.plane, 1 if a.turns > 0 else -1, piece.sweep_rad)
             words.append(self._feed_word(feed))
-            yield self.block(words)
+            yield self.block([self.t.code("incremental"), *words] if g91 and piece is pieces[0] else words)
+        if g91:
+            self.g91_block = False
+            yield self.block([self.t.code("absolute")])
 
     def _centre_offsets(self, a: Arc, start: Vec6) -> tuple[int, int]:
         """Centre minus the tool's position in counts: from the written numbers where the tool is

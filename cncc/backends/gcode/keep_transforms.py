@@ -130,7 +130,31 @@ def kept_transforms(cmds: Sequence[Command], target: Target, step_mm: StepMm) ->
         f, before = motions[k].frame, motions[k - 1].frame
         if f.incremental and any(r is not None and r not in kept for r in (f.rotation, f.mirror, f.scaling)):
             kept.difference_update((before.rotation, before.mirror, before.scaling))
+    kept.difference_update(_moved_while_held(motions))
     return frozenset(kept)
+
+
+def _moved_while_held(motions: Sequence[Command]) -> set[Record]:
+    """Records whose cancel is followed by a move of a held axis (``Frame.held_axes``).
+
+    Such a move goes from where the transform left the tool by the programmed increment;
+    the emitter writes untransformed absolute coordinates, which would say otherwise, so
+    cncc applies the transform itself and the output carries machine-true positions.
+    """
+    out: set[Record] = set()
+    last: tuple[Record, ...] = ()
+    for m in motions:
+        f = m.frame
+        records = tuple(r for r in (f.rotation, f.mirror, f.scaling) if r is not None)
+        if records:
+            last = records
+            continue
+        if True not in f.held_axes:
+            continue
+        if isinstance(m, Cycle) or (isinstance(m, Rapid | Linear | Arc) and any(
+                f.held_axes[k] and abs(m.end[k] - m.start[k]) > 1e-12 for k in range(6))):
+            out.update(last)
+    return out
 
 
 def _scaling_bad(c: Command, r: Record, target: Target) -> bool:

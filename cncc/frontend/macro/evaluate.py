@@ -124,6 +124,9 @@ class Evaluator:
 
     def __init__(self, variables: Variables) -> None:
         self.vars = variables
+        # ROUND inside an NC address rounds to the address's least input increment (Fanuc macro B:
+        # ``X[ROUND[#1]]`` with #1 = 12.4567 is X12.457 in mm); elsewhere it rounds to an integer.
+        self.round_step: float | None = None
 
     def value(self, e: Expr) -> Value:
         """The value of ``e``; vacant only for a lone vacant variable."""
@@ -223,6 +226,9 @@ class Evaluator:
             return _pow(args)
         if e.func == "MOD" and len(args) == 2:
             return _mod(args[0], args[1])
+        if e.func == "ROUND" and len(args) == 1 and self.round_step:
+            step = self.round_step
+            return _round_half_away(args[0] / step) * step
         fn = UNARY.get(e.func)
         if fn is None or len(args) != 1:
             raise MacroError("E0325", f"function {e.func} with {len(args)} argument(s) is not supported",

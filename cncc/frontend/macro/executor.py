@@ -242,7 +242,11 @@ class Executor:
             if w.expr is None:
                 out.append(w)
                 continue
-            v = self.ev.value(w.expr)
+            self.ev.round_step = self._increment(kinds.get(w.letter, "real"))
+            try:
+                v = self.ev.value(w.expr)
+            finally:
+                self.ev.round_step = None
             if v is None:
                 if w.letter in "GM":
                     self.emit(dg.MACRO_VACANT_WORD, Span(self.it.source_id, w.start, w.end),
@@ -255,6 +259,15 @@ class Executor:
             point = kinds.get(w.letter, "real") not in ("int",) or v != int(v)
             out.append(Word(w.letter, v, point, w.start, w.end))
         return tuple(out)
+
+    def _increment(self, kind: str) -> float | None:
+        """The least input increment of an address of ``kind``, in program units (None: ROUND to integers)."""
+        rd = self.it.reader
+        if kind == "length":
+            return rd.liu_length_mm / rd.mm_per_unit
+        if kind == "angle":
+            return rd.liu_angle_deg
+        return None
 
     def run_words(self, fr: CallFrame, i: int, block: Block, words: tuple[Word, ...],
                   names: list[ProgramName], comments: bool = True) -> None:

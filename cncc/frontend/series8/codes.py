@@ -59,6 +59,11 @@ def _dwell(it: Interpreter, ctx: BlockContext, c: CodeDef, st: state.S8State) ->
     ctx.axis_used = True
     xw, fw = ctx.words.pop("X", None), st.dwell_f
     st.dwell_f = None
+    moving = [a for a in "YZABC" if a in ctx.words]
+    if moving:  # the block's axis words are the dwell's: never drop a move silently
+        it.emit_error(dg.DWELL_WITH_MOTION, ctx.span, f"{c.name} with axis words ({' '.join(moving)}): put the move "
+                                                       "in a block of its own (neither is run)")
+        return
     if xw is not None and fw is not None:
         it.emit_error(dg.BAD_DWELL, it.word_span(fw), f"{c.name} takes the time in X or in F, not both")
         return

@@ -1,0 +1,40 @@
+(bolt circle: 8 holes on R40 about X50 Y50, drilled by a macro B loop)
+G17 G71 G90
+T2
+(change to tool T2)
+S1200.
+M03
+(centre X)
+(centre Y)
+(radius)
+(holes)
+(start angle)
+G00 X50. Y50. Z10.
+G00 X86.955 Y65.307
+G00 Z2.
+G01 Z-12. F150.
+G00 Z2.
+G00 X65.307 Y86.955
+G01 Z-12.
+G00 Z2.
+G00 X34.693
+G01 Z-12.
+G00 Z2.
+G00 X13.045 Y65.307
+G01 Z-12.
+G00 Z2.
+G00 Y34.693
+G01 Z-12.
+G00 Z2.
+G00 X34.693 Y13.045
+G01 Z-12.
+G00 Z2.
+G00 X65.307
+G01 Z-12.
+G00 Z2.
+G00 X86.955 Y34.693
+G01 Z-12.
+G00 Z2.
+G00 Z10.
+M05
+M30
