@@ -14,7 +14,8 @@ import pytest
 
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLES = {"contour.nc": "syntec", "szgh_macro.nc": "szgh", "series8_part.nc": "series8",
-            "fanuc_bolt_circle.nc": "fanuc", "haas_slots.nc": "haas", "linuxcnc_pocket.ngc": "linuxcnc", "grbl_square.gcode": "grbl"}
+            "fanuc_bolt_circle.nc": "fanuc", "haas_slots.nc": "haas", "linuxcnc_pocket.ngc": "linuxcnc",
+            "grbl_square.gcode": "grbl"}
 MODELINE = {"szgh_macro.nc", "series8_part.nc"}  # read in their dialect without -x
 
 
