@@ -63,3 +63,12 @@ block = st.one_of(
 @given(st.lists(block, min_size=1, max_size=15))
 def test_generated_programs_roundtrip(blocks: list[str]) -> None:
     roundtrip("\n".join(["G90 G71 G17 G00 X0 Y0 Z0", *blocks, "M30"]) + "\n")
+
+
+def test_full_circle_after_a_unit_change_stays_a_full_circle() -> None:
+    """Found by the property above: Y reached in inch (0.264 mm, written 0.0104 in = 0.26416 mm) and then a
+    full circle in mm.  The target is where the inch numbers put it, not at 0.264 mm, so an end word of
+    Y0.264 would turn the circle into a 0.016 rad arc; the emitter must still sweep the whole circle."""
+    text = ("G90 G71 G17 G00 X0 Y0 Z0\nG00 Y0.01\nG70\nG00 X0.00\nG91 G01 Y0.01 F100.\nG71\n"
+            "G90 G02 I-0.01 J0.00 F200.\nM30\n")
+    roundtrip(text)

@@ -113,6 +113,7 @@ class GcodeEmitter:
         self.tf = TargetFrame()
         self.fold: Vec6 | None = None
         self.qpos: list[int] | None = None  # last written position, in output counts
+        self.written_mm: list[float] | None = None  # the position written before a unit change (output mm)
         self.offgrid: set[int] = set()  # axes where the tool is not at a writable number
         self.cycle_initial: int | None = None  # counts of the initial level while a cycle is active
         self.cycle_data: list[str] = []  # code and data words of the cycle in force
@@ -347,6 +348,9 @@ class GcodeEmitter:
             lines.append(self.block([self.t.code("cycle_off")]))
             self.cycle_initial = None
         if self.forced is None and f.units is not self.units:
+            if self.qpos is not None:  # where the target is, in mm: the last written numbers, in the old units
+                k = 10.0 ** -self.decimals * self.units.mm_per_unit
+                self.written_mm = [self.qpos[i] * k for i in range(3)]
             self.units = f.units
             self.sync_poison = True
             lines.append(self.block([self.code("inch" if f.units is Units.INCH else "metric", "units")]))
@@ -486,9 +490,14 @@ class GcodeEmitter:
         if self.qpos is None:
             fold = self.fold or (0.0,) * 6
             self.qpos = self._at(start)
+            was = self.written_mm
+            self.written_mm = None
+            # off the grid: the new units cannot write the position, or the target is not at it (the
+            # numbers written in the old units rounded it differently, e.g. 0.0104 in for 0.264 mm)
             self.offgrid = {i for i in range(3)
                             if abs(self.qpos[i] * 10.0**-self.decimals * self.units.mm_per_unit
-                                   - (start[i] + fold[i])) > 1e-9}
+                                   - (start[i] + fold[i])) > 1e-9
+                            or (was is not None and abs(was[i] - (start[i] + fold[i])) > 1e-9)}
         return self.qpos
 
     def _axes(self, start: Vec6, end: Vec6, always: tuple[int, ...] = ()) -> list[str]:
