@@ -31,11 +31,12 @@ def errors(r: object) -> list[str]:
 # ---- macro-word abbreviations ----------------------------------------------------------------
 def test_two_letter_abbreviations_run_like_the_words() -> None:
     """Fanuc Custom Macro B: the first two characters of a macro word may stand for it
-    (WH = WHILE, GO = GOTO, EN = END, AT = ATAN, SQ = SQRT, RO = ROUND)."""
+    (WH = WHILE, GO = GOTO, EN = END, AT = ATAN, SQ = SQRT, RO = ROUND).  ROUND is assigned to a
+    variable: inside an address it rounds to the address's increment instead (issue 17)."""
     spelled = ("G21 G90\n#1=0\nWHILE[#1LT3]DO1\nG01 X[#1*10.] F100.\n#1=#1+1\nEND1\n"
-               "IF[#1EQ3]GOTO20\nG01 Y50.\nN20 G01 Y[ATAN[1]/[1]] Z-[SQRT[16.]] X[ROUND[2.6]]\nM30\n")
+               "IF[#1EQ3]GOTO20\nG01 Y50.\nN20 #3=ROUND[2.6]\nG01 Y[ATAN[1]/[1]] Z-[SQRT[16.]] X[#3]\nM30\n")
     short = ("G21 G90\n#1=0\nWH[#1LT3]DO1\nG01 X[#1*10.] F100.\n#1=#1+1\nEN1\n"
-             "IF[#1EQ3]GO20\nG01 Y50.\nN20 G01 Y[AT[1]/[1]] Z-[SQ[16.]] X[RO[2.6]]\nM30\n")
+             "IF[#1EQ3]GO20\nG01 Y50.\nN20 #3=RO[2.6]\nG01 Y[AT[1]/[1]] Z-[SQ[16.]] X[#3]\nM30\n")
     want = moves(spelled, "fanuc")
     assert moves(short, "fanuc") == want
     assert [m[1] for m in want] == [(0.0, 0.0, 0.0), (10.0, 0.0, 0.0), (20.0, 0.0, 0.0), (3.0, 45.0, -4.0)]

@@ -226,14 +226,17 @@ def drill_holes(cmds: Sequence[Command]) -> list[list[float]]:
 
 
 def tool_table(rep: TimingReport, cmds: Sequence[Command]) -> list[dict[str, Any]]:
-    """Per tool: the D and H numbers in force in its commands and its time in every column."""
+    """Per tool: the D and H numbers in force in its motions and its time in every column.
+
+    Only motions count: a tool change leaves the previous tool's H in force until the
+    program's next G43, and the blocks in between (spindle, modes) do not use it."""
     d_used: dict[int, set[int]] = {}
     h_used: dict[int, set[int]] = {}
     tools = rep.index.cmd_tool.tolist()
     last_frame = None
     for c, t in zip(cmds, tools, strict=True):
         frame = getattr(c, "frame", None)
-        if frame is None or frame is last_frame:
+        if frame is None or frame is last_frame or not (hasattr(c, "end") or hasattr(c, "holes")):
             continue
         last_frame = frame
         if frame.comp_index:  # the D in force (cutter-comp has applied the radius: the side is off by now)
