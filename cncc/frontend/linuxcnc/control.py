@@ -22,6 +22,8 @@ def run_oword(ex: LinuxcncExecutor, fr: Frame, i: int, ow: OWord) -> None:
     kw = ow.keyword
     args = [ex.ev.number(a) for a in ow.args]
     span = fx.span_of(ow.start, ow.end)
+    if kw == "":
+        return  # a bare O<number> or O<name> line names the program (an M98 target); running it does nothing
     if kw == "sub":
         fr.pc = fx.subs[ow.label][1] + 1  # a definition met in the flow is skipped
     elif kw in ("endsub", "return"):
