@@ -44,6 +44,7 @@ class Rs274State:
     nurbs: list[tuple[float, float, float]] = field(default_factory=list)  # G5.2 control points x, y, weight
     nurbs_order: int = 3
     naive_mm: float = 0.0  # G64 Q (the naive-CAM tolerance in force)
+    rotation_deg: dict[int, float] = field(default_factory=dict)  # G10 L2 R: work system -> XY rotation
 
 
 _STATES: WeakKeyDictionary[Interpreter, Rs274State] = WeakKeyDictionary()

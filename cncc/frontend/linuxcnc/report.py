@@ -170,11 +170,14 @@ class Reporter:
 
     def _after_work_select(self, out: list[Command], at: int) -> None:
         """A work-system change reports the G92 offset and the XY rotation after the G5x offset."""
+        from cncc.frontend.rs274_g10 import rotation_deg
+
         for k in range(len(out) - 1, at - 1, -1):
             c = out[k]
-            if isinstance(c, SetMode) and c.name == "g5x_offset":
+            if isinstance(c, SetMode) and c.name == "g5x_offset" and \
+                    not (k + 1 < len(out) and isinstance(out[k + 1], SetMode) and out[k + 1].name == "xy_rotation"):
                 out[k + 1:k + 1] = [SetMode(c.span, c.frame, "g92_offset", c.frame.g92_offset_mm),
-                                    SetMode(c.span, c.frame, "xy_rotation", 0.0)]
+                                    SetMode(c.span, c.frame, "xy_rotation", rotation_deg(self.it, c.frame.work_index))]
 
     # ---- canned cycles
     def _cycles(self, out: list[Command], at: int) -> None:
@@ -223,7 +226,10 @@ class Reporter:
         resets: list[Command] = []
         g54 = it.options.work_offsets_mm.get(1, (0.0,) * 6)
         it.set_frame(replace(it.frame, work_index=1, work_offset_mm=g54))
-        resets += [SetMode(span, it.frame, "g5x_offset", 1), SetMode(span, it.frame, "xy_rotation", 0.0)]
+        from cncc.frontend.rs274_g10 import rotation_deg
+
+        resets += [SetMode(span, it.frame, "g5x_offset", 1),
+                   SetMode(span, it.frame, "xy_rotation", rotation_deg(it, 1))]
         if it.frame.plane is not Plane.XY:
             it.set_frame(replace(it.frame, plane=Plane.XY))
             resets.append(SetMode(span, it.frame, "plane", Plane.XY))
