@@ -120,7 +120,9 @@ def arcs_r(rng: random.Random) -> Program:
         chord = math.hypot(ex - x, ey - y)
         if chord < 1e-3:
             continue
-        r = chord / 2 * rng.choice([1.0, 1.0001, rng.uniform(1.0, 3.0), 0.9999, 0.99])
+        r = chord / 2 * rng.choice([1.0, 1.0001, rng.uniform(1.0, 3.0), rng.uniform(1.0, 3.0)])
+        if rng.random() < 0.15:  # just short of half the chord: inside or outside the tolerance
+            r = chord / 2 - rng.choice([0.0005, 0.001, 0.002, 0.00004, 0.00006])
         if rng.random() < 0.5:
             r = -r
         out.append(f"{rng.choice(['G2', 'G3'])} X{num(ex)} Y{num(ey)} R{num(r)}")
