@@ -330,10 +330,31 @@ def path_feed(rng: random.Random) -> Program:
     return Program(_end(out, rng))
 
 
+# ---- rs274ngc syntax (issue 24's syntax items) ---------------------------------------------------
+def syntax(rng: random.Random) -> Program:
+    a, b = rng.randint(-9, 9) or 1, rng.randint(-9, 9) or 2
+    x = num(rng.uniform(-20, 20))
+    pieces = [
+        f"#1 = [{a} MOD {b}]\nG1 X#1",
+        f"G1 X {rng.choice(['SQRT', 'ABS', 'ROUND', 'FIX'])}[{abs(a) * abs(b)}]",
+        f"#<p> = {x}\nG1 Y EXISTS[#<p>] Z EXISTS[#<q>]",
+        f"#<k> = {rng.randint(5, 30)}\n#{rng.randint(5, 30)} = {x}\nG1 X##<k>",
+        f"#<s> = {a}\no110 if [#<s> GT 0]\nG1 X1\no110 else if [#<s> LT -3]\nG1 X2\no110 else\nG1 X3\no110 end if",
+        f"o120 sub\nG1 X#1 Y#2\no120 end sub\no120 call [{a}] (between) [{b}]",
+        f"{rng.choice(['G0 G80', 'G80 G0', 'G1 G80'])} X{x}",
+        f"#2 = {a} {rng.choice(['*', '+', '/'])} {b}",
+        "o130 sub\no131 sub\no131 endsub\no130 endsub",
+        f"#3 = {rng.choice(['-', ''])}[{a} ** 2]\nG1 Z#3",
+    ]
+    out = ["G21 G90 F500"]
+    out += rng.sample(pieces, rng.randint(1, 3))
+    return Program(_end(out, rng))
+
+
 FEATURES: dict[str, Callable[[random.Random], Program]] = {
     "lines": lines, "arcs_ijk": arcs_ijk, "arcs_r": arcs_r, "helix_turns": helix_turns,
     "work_offsets": work_offsets, "rotation": rotation, "g92_g52": g92_offsets, "tool_length": tool_length,
-    "cycles": cycles, "cutter_comp": cutter_comp, "owords": owords, "path_feed": path_feed,
+    "cycles": cycles, "cutter_comp": cutter_comp, "owords": owords, "path_feed": path_feed, "syntax": syntax,
 }
 
 

@@ -77,7 +77,7 @@ class LinuxcncBuilder:
         args: list[sx.Expr] = []
         for it in items[1:]:
             if isinstance(it, Token) and it.type == "OKEYWORD":
-                keyword = str(it).lower()
+                keyword = "".join(str(it).split()).lower()  # "else if", "end sub" as LinuxCNC reads them
                 end = self.base + (it.start_pos or 0) + len(str(it))
             elif isinstance(it, sx.CommentItem):
                 continue

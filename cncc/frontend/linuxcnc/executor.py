@@ -146,7 +146,7 @@ class LinuxcncExecutor:
             self.stopped = True
 
     def _block(self, fr: Frame, block: Block) -> None:
-        words = tuple(self._value_word(w) for w in block.words)
+        words = self._drop_g80(tuple(self._value_word(w) for w in block.words))
         sets = [(s.target, self.ev.number(s.expr)) for s in block.statements if isinstance(s, Assign)]
         for target, value in sets:
             if target.index is None:
@@ -174,6 +174,14 @@ class LinuxcncExecutor:
             return
         self.out.extend(self.it.execute(nc))
         self.reporter.after_block(Span(self.it.source_id, block.start, block.end), words, self.out, at, before)
+
+    def _drop_g80(self, words: tuple[Word, ...]) -> tuple[Word, ...]:
+        """G80 beside another motion code (``G0 G80 X5``): LinuxCNC ignores the G80."""
+        motions = [w for w in words if w.letter == "G" and (c := self.it.dialect.code("G", round(w.value * 10)))
+                   is not None and c.group == "motion"]
+        if len(motions) < 2:
+            return words
+        return tuple(w for w in words if not (w in motions and round(w.value * 10) == 800))
 
     def _value_word(self, w: Word) -> Word:
         if w.expr is None:

@@ -91,6 +91,8 @@ class _Matcher:
         kw, fx = ow.keyword, self.fx
         if kw == "":
             fx.programs[ow.label] = i
+        elif kw == "sub" and any(k == "sub" for _, k, _ in self.open):
+            self.error(i, "Nested subroutine definition")
         elif kw in ("sub", "if", "repeat", "do"):
             self.open.append((ow.label, kw, i))
             if kw == "if":
