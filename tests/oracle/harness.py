@@ -116,7 +116,7 @@ def _same_args(a: tuple[str, ...], b: tuple[str, ...]) -> bool:
         if x == y:
             continue
         try:
-            if abs(float(x) - float(y)) > TOLERANCE:
+            if abs(float(x) - float(y)) > TOLERANCE + 1e-9:  # one unit of the 4th decimal: both round
                 return False
         except ValueError:
             return False

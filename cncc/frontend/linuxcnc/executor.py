@@ -70,6 +70,8 @@ class LinuxcncExecutor:
         self.reporter = Reporter(it, self.comments)
         self.files: dict[str, FlowIndex] = {}
         self.stack: list[Frame] = []
+        self.main: FlowIndex | None = None  # the main program (M2/M30 or its closing % must end it)
+        self.opened = False  # the main program opens with a % line
         self.out: list[Command] = []
         self.stopped = False
 
@@ -102,6 +104,8 @@ class LinuxcncExecutor:
         if index is None:
             return
         self.stack = [Frame(index, 0)]
+        self.main = index
+        self.opened = next((b.percent for b in index.blocks if b.percent or b.words or b.statements), False)
         steps = 0
         while self.stack and not self.stopped and not self.it.ended:
             fr = self.stack[-1]
@@ -119,9 +123,27 @@ class LinuxcncExecutor:
                 yield from self.out
                 self.out = []
 
+    def _percent(self, fr: Frame, i: int, block: Block) -> bool:
+        """A ``%`` line: the opening one is skipped, the closing one ends the program (the rest of
+        the file is not read); in a file that does not open with ``%`` it is an error."""
+        first = next(k for k, b in enumerate(fr.index.blocks) if b.percent or b.words or b.statements)
+        if i == first:
+            return False
+        if self.opened:
+            self.stack.clear()
+        else:
+            self.fail(dg.SYNTAX, fr.index.span(block), "Bad character '%' used")
+        return True
+
     def _fell_off(self, fr: Frame) -> None:
         if fr.caller is None:
             self.stack.clear()
+            blocks = fr.index.blocks
+            required = bool(self.it.dialect.option("program_end_required", False))
+            if required and fr.index is self.main and blocks:  # M2/M30 or the closing % must end the file
+                last = fr.index.span(blocks[-1])
+                self.fail(dg.PROGRAM_NO_END, Span(last.source_id, last.end, last.end), "File ended with no percent "
+                          "sign" + ("" if self.opened else " or program end"))
         else:
             self.stack.pop()
 
@@ -130,6 +152,8 @@ class LinuxcncExecutor:
         block = fr.index.blocks[i]
         fr.pc = i + 1
         if block.block_delete and self.it.options.block_delete:
+            return
+        if block.percent and fr.index is self.main and self._percent(fr, i, block):
             return
         errors = self.sink.errors
         try:
