@@ -260,4 +260,5 @@ SEQUENCES: dict[CycleKind, Callable[[_Path], None]] = {
     CycleKind.BORE_MANUAL: _manual,
 }
 
+from cncc.passes import linuxcnc_cycles as _linuxcnc_cycles  # noqa: E402,F401  (registers the LinuxCNC kinds)
 from cncc.passes import series8_cycles as _series8_cycles  # noqa: E402,F401  (registers the SERIES 8 kinds)
