@@ -59,6 +59,15 @@ _ALWAYS = {"comp_off": "comp_off", "comp_left": "comp_left", "comp_right": "comp
 _FEED_MODES = {"inverse_time": "inverse_time", "feed_per_min_rs274": "per_min", "feed_per_rev_rs274": "per_rev"}
 
 
+# The codes that read a P word in LinuxCNC 2.9 (x10: G5.2 is 52) and rs274's message otherwise.
+_P_MOTIONS = frozenset({20, 30, 50, 52, 760, 820, 860, 880, 890})
+_P_G_CODES = _P_MOTIONS | {40, 100, 640}
+_P_M_CODES = frozenset({500, 510, 520, 530, 620, 630, 640, 650, 660, 980})
+_P_CYCLES = frozenset({"drill_dwell", "bore_dwell_stop_rs274", "bore_manual_rs274", "bore_dwell_feed_out"})
+_P_WITHOUT_USER = ("P word with no G2 G3 G4 G10 G64 G5 G5.2 G76 G82 G86 G88 G89 or M50 M51 M52 M53 M62 M63 M64 M65 "
+                   "M66 M98 or user M code to use it")
+
+
 @dataclass(frozen=True, slots=True)
 class Before:
     """The interpreter's modes before a block."""
@@ -83,6 +92,7 @@ class Reporter:
     comments: dict[str, str]
     flood: bool = False
     mist: bool = False
+    raised_cycle: str = ""  # the cycle code whose initial level was below R (each block rises to R again)
 
     def allowed(self, span: Span, words: tuple[Word, ...]) -> bool:
         """LinuxCNC's checks of a block against the state before it (an error: not run)."""
@@ -95,7 +105,29 @@ class Reporter:
                 it.emit_error(dg.COMP_PLANE_CHANGE, span, f"{c.name}: the plane cannot change while cutter "
                                                           "compensation is on")
                 return False
+        if any(w.letter == "P" for w in words) and not self._uses_p(words):
+            it.emit_error(dg.CONTROLLER_REJECTS, span, _P_WITHOUT_USER)
+            return False
         return True
+
+    def _uses_p(self, words: tuple[Word, ...]) -> bool:
+        """rs274's check_other_codes: a P word needs one of the codes that read it (the motion in force
+        counts for G2/G3/G5/G82/G86/G88/G89)."""
+        it = self.it
+        motion = None
+        for w in words:
+            v = round(w.value * 10)
+            if w.letter == "G":
+                if v in _P_G_CODES:
+                    return True
+                c = it.dialect.code("G", v)
+                if c is not None and c.group == "motion":
+                    motion = v
+            elif w.letter == "M" and (v in _P_M_CODES or 1000 <= v < 2000):
+                return True
+        if motion is None:
+            return it.modal.cycle in _P_CYCLES or it.modal.motion in ("arc_cw", "arc_ccw")
+        return motion in _P_MOTIONS
 
     def after_block(self, span: Span, words: tuple[Word, ...], out: list[Command], at: int, before: Before) -> None:
         it = self.it
@@ -183,6 +215,9 @@ class Reporter:
     def _cycles(self, out: list[Command], at: int) -> None:
         from cncc.frontend.rs274 import state
 
+        if not self.it.modal.cycle:
+            self.raised_cycle = ""
+
         k = at
         while k < len(out):
             c = out[k]
@@ -208,8 +243,11 @@ class Reporter:
         from cncc.frontend import cycles
 
         n = c.axis
-        if c.kind.value == "back_bore" or c.start[n] >= c.r_mm:
+        if self.raised_cycle and self.raised_cycle != c.code:
+            self.raised_cycle = ""
+        if c.kind.value == "back_bore" or c.start[n] > c.r_mm or (c.start[n] == c.r_mm and not self.raised_cycle):
             return c, None
+        self.raised_cycle = c.code  # rs274 compares its remembered initial level with R in every block
         up = _with(c.start, n, c.r_mm)
         data = cycles.cycle_data(self.it)
         if data is not None:  # later blocks of this cycle keep R as their initial level
