@@ -246,6 +246,7 @@ class CycleKind(enum.Enum):
     BORE_FEED_OUT_RS274 = "bore_feed_out_rs274"  # G85: feed in, feed out to R, rapid to the clear level
     BORE_DWELL_STOP_RS274 = "bore_dwell_stop_rs274"  # G86: feed in, dwell, stop, rapid out, restart
     BORE_MANUAL_RS274 = "bore_manual_rs274"  # G88: feed in, dwell, stop, program stop, restart (tool stays)
+    BORE_DWELL_FEED_OUT_RS274 = "bore_dwell_feed_out_rs274"  # G89: feed in, dwell, feed out to the clear level
 
 
 @dataclass(frozen=True, slots=True)
@@ -286,6 +287,7 @@ class Cycle:
     pattern_words: tuple[tuple[str, float], ...] = ()  # its words as read (mm, deg, counts; origin by axis letter)
     motion: Motion = DEFAULT_MOTION
     lift_pause_s: float = 0.0  # G73/G83: dwell before each peck lift (SZGH User P8)
+    zero_moves: bool = False  # LinuxCNC: the move over each hole and a dwell are made even with no length or time
     lift_at_feed: bool = False  # G73/G83: peck lifts at feed instead of rapid (User P8 < 0)
 
     @property

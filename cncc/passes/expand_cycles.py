@@ -63,7 +63,10 @@ def expand(c: Cycle) -> list[Command]:
     sequence = SEQUENCES[c.kind]
     for hole in c.holes:
         path.hole = hole
-        path.rapid(path.at(path.pos[c.axis]))
+        over = path.at(path.pos[c.axis])
+        if c.zero_moves and over == path.pos:  # rs274 prints the move even when it has no length
+            path.out.append(Rapid(c.span, c.frame, over, over, path.motion, c.code))
+        path.rapid(over)
         sequence(path)
     return path.out
 
@@ -117,7 +120,7 @@ class _Path:
         (self.feed if self.c.lift_at_feed else self.rapid)(p)
 
     def dwell(self) -> None:
-        if self.c.dwell_s > 0:
+        if self.c.dwell_s > 0 or self.c.zero_moves:
             self.out.append(Dwell(self.c.span, self.c.frame, self.c.dwell_s))
 
     def spindle(self, state: SpindleState) -> None:

@@ -1,4 +1,4 @@
-"""The hole sequences of LinuxCNC 2.9's G84, G85, G86 and G88, registered into ``expand-cycles``.
+"""The hole sequences of LinuxCNC 2.9's G84, G85, G86, G88 and G89, registered into ``expand-cycles``.
 
 As rs274's ``convert_cycle_g8x`` make them (checked against its ``-g`` trace), once the tool
 is above the hole at R.  Every move is made even when it has no length (rs274 prints it):
@@ -8,8 +8,9 @@ is above the hole at R.  Every move is made even when it has no length (rs274 pr
 * ``bore_feed_out_rs274`` (G85): feed to Z, feed to R, rapid to the clear level;
 * ``bore_dwell_stop_rs274`` (G86): feed to Z, dwell P, spindle stop, rapid to the clear
   level, spindle on in its direction;
+* ``bore_dwell_feed_out_rs274`` (G89): feed to Z, dwell P, feed out to the clear level;
 * ``bore_manual_rs274`` (G88): feed to Z, dwell P, spindle stop, program stop (the
-  operator retracts), spindle on; the tool is taken to be where it stopped.
+  operator retracts), spindle on; the tool is then taken to be at the clear level.
 """
 
 from __future__ import annotations
@@ -66,6 +67,14 @@ def _dwell_stop(p: _Path) -> None:
     p.spindle(p.forward)
 
 
+def _dwell_feed_out(p: _Path) -> None:
+    c = p.c
+    p.rapid(p.at(c.r_mm))
+    _feed(p, p.at(c.bottom_mm))
+    _dwell(p)
+    _feed(p, p.at(c.retract_mm))
+
+
 def _manual(p: _Path) -> None:
     c = p.c
     p.rapid(p.at(c.r_mm))
@@ -74,6 +83,7 @@ def _manual(p: _Path) -> None:
     p.spindle(SpindleState.OFF)
     p.out.append(Stop(c.span, c.frame, StopKind.PROGRAM_STOP))
     p.spindle(p.forward)
+    p.pos = p.at(c.retract_mm)  # rs274 takes the tool to be at the clear level after the operator's retract
 
 
 SEQUENCES.update({
@@ -81,4 +91,5 @@ SEQUENCES.update({
     CycleKind.BORE_FEED_OUT_RS274: _feed_out,
     CycleKind.BORE_DWELL_STOP_RS274: _dwell_stop,
     CycleKind.BORE_MANUAL_RS274: _manual,
+    CycleKind.BORE_DWELL_FEED_OUT_RS274: _dwell_feed_out,
 })

@@ -60,10 +60,12 @@ _FEED_MODES = {"inverse_time": "inverse_time", "feed_per_min_rs274": "per_min", 
 
 
 # The codes that read a P word in LinuxCNC 2.9 (x10: G5.2 is 52) and rs274's message otherwise.
-_P_MOTIONS = frozenset({20, 30, 50, 52, 760, 820, 860, 880, 890})
+_P_MOTIONS = frozenset({20, 30, 50, 52, 760, 820, 840, 860, 880, 890})  # G84 reads P too (its dwell)
 _P_G_CODES = _P_MOTIONS | {40, 100, 640}
 _P_M_CODES = frozenset({500, 510, 520, 530, 620, 630, 640, 650, 660, 980})
-_P_CYCLES = frozenset({"drill_dwell", "bore_dwell_stop_rs274", "bore_manual_rs274", "bore_dwell_feed_out"})
+_P_CYCLES = frozenset({"drill_dwell", "tap_rs274", "bore_dwell_stop_rs274", "bore_manual_rs274",
+                       "bore_dwell_feed_out_rs274"})
+_P_MODAL_OPS = frozenset({"arc_cw", "arc_ccw", "cubic_spline", "nurbs_begin"})
 _P_WITHOUT_USER = ("P word with no G2 G3 G4 G10 G64 G5 G5.2 G76 G82 G86 G88 G89 or M50 M51 M52 M53 M62 M63 M64 M65 "
                    "M66 M98 or user M code to use it")
 
@@ -126,7 +128,7 @@ class Reporter:
             elif w.letter == "M" and (v in _P_M_CODES or 1000 <= v < 2000):
                 return True
         if motion is None:
-            return it.modal.cycle in _P_CYCLES or it.modal.motion in ("arc_cw", "arc_ccw")
+            return it.modal.cycle in _P_CYCLES or it.modal.motion in _P_MODAL_OPS
         return motion in _P_MOTIONS
 
     def after_block(self, span: Span, words: tuple[Word, ...], out: list[Command], at: int, before: Before) -> None:
@@ -225,7 +227,7 @@ class Reporter:
                 k += 1
                 continue
             pre: list[Command] = []
-            c, rise = self._rise_to_r(c)
+            c, rise = self._rise_to_r(replace(c, zero_moves=True))
             if rise is not None:
                 pre.append(rise)
             path = self.it.modal.path
