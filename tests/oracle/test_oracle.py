@@ -20,7 +20,7 @@ FAST_COUNT = 6
 SLOW_COUNT = 200
 # Features whose classes of disagreement are not all fixed yet (issue 24); they run, and
 # report their disagreements, as expected failures.
-OPEN: frozenset[str] = frozenset({"rotation"})
+OPEN: frozenset[str] = frozenset()
 
 
 def _check(feature: str, count: int, seed: int) -> None:

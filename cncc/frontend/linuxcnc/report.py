@@ -23,6 +23,7 @@ from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING
 
 from cncc import diagnostics as dg
+from cncc.frontend.linuxcnc.rotation import Placement, reexpress
 from cncc.frontend.syntax import Word
 from cncc.ir import (
     Command,
@@ -78,12 +79,15 @@ class Before:
     arc_absolute: bool
     work_index: int
     tool_length_mm: float
+    placement: Placement
+    pos: Vec6
 
     @staticmethod
     def of(it: Interpreter) -> Before:
         from cncc.frontend.rs274 import state
 
-        return Before(it.modal.incremental, state(it).arc_absolute, it.frame.work_index, it.frame.tool_length_mm)
+        return Before(it.modal.incremental, state(it).arc_absolute, it.frame.work_index, it.frame.tool_length_mm,
+                      Placement.of(it), it.pos)
 
 
 @dataclass(slots=True)
@@ -148,6 +152,7 @@ class Reporter:
         if "work" in ops:
             self._after_work_select(out, at)
         self._cycles(out, at)
+        reexpress(it, before.placement, before.pos, words, out, at)
         self._program_end(out, at)
         self._track_coolant(out[at:])
 
@@ -208,8 +213,9 @@ class Reporter:
 
         for k in range(len(out) - 1, at - 1, -1):
             c = out[k]
+            nxt = out[k + 1] if k + 1 < len(out) else None
             if isinstance(c, SetMode) and c.name == "g5x_offset" and \
-                    not (k + 1 < len(out) and isinstance(out[k + 1], SetMode) and out[k + 1].name == "xy_rotation"):
+                    not (isinstance(nxt, SetMode) and nxt.name == "xy_rotation"):
                 out[k + 1:k + 1] = [SetMode(c.span, c.frame, "g92_offset", c.frame.g92_offset_mm),
                                     SetMode(c.span, c.frame, "xy_rotation", rotation_deg(self.it, c.frame.work_index))]
 
