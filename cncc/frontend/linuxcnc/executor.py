@@ -31,7 +31,7 @@ from cncc.frontend.syntax import Assign, Block, CommentItem, Word
 from cncc.ir import Command, Message
 from cncc.source import SourceFile, Span
 
-_MESSAGE = re.compile(r"^\(\s*(MSG|DEBUG|PRINT)\s*,(.*)\)$", re.IGNORECASE | re.DOTALL)
+_MESSAGE = re.compile(r"^\(\s*(MSG|DEBUG|PRINT|ABORT)\s*,(.*)\)$", re.IGNORECASE | re.DOTALL)
 _PARAM_IN_TEXT = re.compile(r"#\s*<[^>]*>|#\d+")
 
 
@@ -72,6 +72,7 @@ class LinuxcncExecutor:
         self.stack: list[Frame] = []
         self.main: FlowIndex | None = None  # the main program (M2/M30 or its closing % must end it)
         self.opened = False  # the main program opens with a % line
+        self.line = 0  # the line of the block running (#<_line>)
         self.out: list[Command] = []
         self.stopped = False
 
@@ -94,7 +95,7 @@ class LinuxcncExecutor:
             "_absolute": float(not it.modal.incremental), "_incremental": float(it.modal.incremental),
             "_feed": it.modal.feed or 0.0, "_rpm": it.modal.spindle_rpm,
             "_current_tool": float(it.modal.tool_loaded), "_selected_tool": float(it.modal.tool_selected),
-            "_value": 0.0, "_value_returned": 0.0,
+            "_value": 0.0, "_value_returned": 0.0, "_line": float(self.line),
         }
         return values.get(name)
 
@@ -151,6 +152,7 @@ class LinuxcncExecutor:
         i = fr.pc
         block = fr.index.blocks[i]
         fr.pc = i + 1
+        self.line = block.line
         if block.block_delete and self.it.options.block_delete:
             return
         if block.percent and fr.index is self.main and self._percent(fr, i, block):
@@ -226,7 +228,9 @@ class LinuxcncExecutor:
             span = Span(self.it.source_id, c.start, c.end)
             if kind in ("DEBUG", "PRINT"):
                 text = self._substitute(text, c.start)
-            if kind == "PRINT":
+            if kind == "ABORT":  # rs274 stops with the text (parameters substituted) as its error
+                self.fail(dg.PROGRAM_ABORT, span, self._substitute(m.group(2), c.start))
+            elif kind == "PRINT":
                 self.sink.emit(dg.LINUXCNC_PRINT, span, text)
             else:
                 self.out.append(Message(span, self.it.frame, text))

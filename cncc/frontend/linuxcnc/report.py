@@ -111,10 +111,24 @@ class Reporter:
                 it.emit_error(dg.COMP_PLANE_CHANGE, span, f"{c.name}: the plane cannot change while cutter "
                                                           "compensation is on")
                 return False
+        rotary = next((w.letter for w in words if w.letter in "ABC"), None)
+        if rotary is not None and self._in_cycle(words):
+            it.emit_error(dg.CONTROLLER_REJECTS, span, f"Cannot put a{'n' if rotary == 'A' else ''} "
+                                                       f"{rotary.lower()} in canned cycle")
+            return False
         if any(w.letter == "P" for w in words) and not self._uses_p(words):
             it.emit_error(dg.CONTROLLER_REJECTS, span, _P_WITHOUT_USER)
             return False
         return True
+
+    def _in_cycle(self, words: tuple[Word, ...]) -> bool:
+        """The block runs a canned cycle: a cycle code in it, or the cycle in force and no other motion code."""
+        it = self.it
+        for w in words:
+            c = it.dialect.code("G", round(w.value * 10)) if w.letter == "G" else None
+            if c is not None and c.group in ("cycle", "motion"):
+                return c.group == "cycle" or c.op == "cycle"
+        return bool(it.modal.cycle)
 
     def _uses_p(self, words: tuple[Word, ...]) -> bool:
         """rs274's check_other_codes: a P word needs one of the codes that read it (the motion in force
