@@ -23,7 +23,7 @@ from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING
 
 from cncc import diagnostics as dg
-from cncc.frontend.linuxcnc.rotation import Placement, reexpress
+from cncc.frontend.linuxcnc.rotation import Placement, reexpress, rotation_in_use
 from cncc.frontend.syntax import Word
 from cncc.ir import (
     Command,
@@ -34,6 +34,7 @@ from cncc.ir import (
     Cycle,
     Dwell,
     FeedRate,
+    Frame,
     PathMode,
     Plane,
     Rapid,
@@ -79,15 +80,18 @@ class Before:
     arc_absolute: bool
     work_index: int
     tool_length_mm: float
-    placement: Placement
+    frame: Frame
+    theta_deg: float  # the XY rotation of the active work system
     pos: Vec6
 
     @staticmethod
     def of(it: Interpreter) -> Before:
         from cncc.frontend.rs274 import state
 
-        return Before(it.modal.incremental, state(it).arc_absolute, it.frame.work_index, it.frame.tool_length_mm,
-                      Placement.of(it), it.pos)
+        st = state(it)
+        theta = st.rotation_deg.get(it.frame.work_index, 0.0) if st.rotation_deg else 0.0
+        return Before(it.modal.incremental, st.arc_absolute, it.frame.work_index, it.frame.tool_length_mm,
+                      it.frame, theta, it.pos)
 
 
 @dataclass(slots=True)
@@ -166,7 +170,8 @@ class Reporter:
         if "work" in ops:
             self._after_work_select(out, at)
         self._cycles(out, at)
-        reexpress(it, before.placement, before.pos, words, out, at)
+        if before.theta_deg or rotation_in_use(it):
+            reexpress(it, Placement.of_frame(before.frame, before.theta_deg), before.pos, words, out, at)
         self._program_end(out, at)
         self._track_coolant(out[at:])
 

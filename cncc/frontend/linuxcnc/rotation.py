@@ -16,7 +16,7 @@ from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING
 
 from cncc.frontend.syntax import Word
-from cncc.ir import Command, Linear, Rapid, Vec6
+from cncc.ir import Command, Frame, Linear, Rapid, Vec6
 
 if TYPE_CHECKING:
     from cncc.frontend.interp import Interpreter
@@ -34,9 +34,12 @@ class Placement:
     def of(it: Interpreter) -> Placement:
         from cncc.frontend.rs274_g10 import rotation_deg
 
-        f = it.frame
+        return Placement.of_frame(it.frame, rotation_deg(it, it.frame.work_index))
+
+    @staticmethod
+    def of_frame(f: Frame, theta_deg: float) -> Placement:
         g5x = (f.work_offset_mm[0] + f.local_offset_mm[0], f.work_offset_mm[1] + f.local_offset_mm[1])
-        return Placement(g5x, (f.g92_offset_mm[0], f.g92_offset_mm[1]), rotation_deg(it, f.work_index))
+        return Placement(g5x, (f.g92_offset_mm[0], f.g92_offset_mm[1]), theta_deg)
 
     def machine(self, x: float, y: float) -> tuple[float, float]:
         c, s = math.cos(math.radians(self.theta_deg)), math.sin(math.radians(self.theta_deg))
@@ -47,6 +50,13 @@ class Placement:
         c, s = math.cos(math.radians(self.theta_deg)), math.sin(math.radians(self.theta_deg))
         u, v = mx - self.g5x[0], my - self.g5x[1]
         return c * u + s * v - self.g92[0], -s * u + c * v - self.g92[1]
+
+
+def rotation_in_use(it: Interpreter) -> bool:
+    """Some work system has an XY rotation (G10 L2 R) in this program."""
+    from cncc.frontend.rs274 import state
+
+    return any(state(it).rotation_deg.values())
 
 
 def _with_xy(p: Vec6, xy: tuple[float, float]) -> Vec6:
