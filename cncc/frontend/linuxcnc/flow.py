@@ -76,7 +76,8 @@ class _Matcher:
                     self.fx.programs[str(round(b.words[0].value))] = i
                 continue
             self.fx.owords[i] = ow
-            self.line(i, ow)
+            if ow.label_expr is None:  # a computed call matches nothing
+                self.line(i, ow)
         for label, kw, line in self.open:
             self.error(line, f"o{label} {kw} has no matching end{'sub' if kw == 'sub' else kw}")
         return self.ok
