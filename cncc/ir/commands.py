@@ -243,6 +243,7 @@ class CycleKind(enum.Enum):
     BACK_BORE_RETURN = "back_bore_return"  # G89: back bore that feeds back down to R before leaving
     # LinuxCNC 2.9's own sequences (rs274's interp_cycles; cncc/passes/linuxcnc_cycles.py)
     TAP_RS274 = "tap_rs274"  # G84: overrides off, feed in, reverse, dwell, feed out to the clear level
+    TAP_LEFT_RS274 = "tap_left_rs274"  # G74: the same with the spindle turning counter-clockwise
     BORE_FEED_OUT_RS274 = "bore_feed_out_rs274"  # G85: feed in, feed out to R, rapid to the clear level
     BORE_DWELL_STOP_RS274 = "bore_dwell_stop_rs274"  # G86: feed in, dwell, stop, rapid out, restart
     BORE_MANUAL_RS274 = "bore_manual_rs274"  # G88: feed in, dwell, stop, program stop, restart (tool stays)

@@ -91,7 +91,7 @@ class _Path:
         self.hole: Vec6 = c.start
         self.motion: Motion = replace(c.motion, mode=PathMode.EXACT_STOP)
         running = c.spindle in (SpindleState.CW, SpindleState.CCW)
-        default = SpindleState.CCW if c.kind is CycleKind.TAP_LEFT else SpindleState.CW
+        default = SpindleState.CCW if c.kind in (CycleKind.TAP_LEFT, CycleKind.TAP_LEFT_RS274) else SpindleState.CW
         self.forward = c.spindle if running else default
         self.down = -1.0 if c.bottom_mm < c.r_mm else 1.0
 

@@ -1,9 +1,10 @@
-"""The hole sequences of LinuxCNC 2.9's G84, G85, G86, G88 and G89, registered into ``expand-cycles``.
+"""The hole sequences of LinuxCNC 2.9's G74, G84, G85, G86, G88 and G89, registered into ``expand-cycles``.
 
 As rs274's ``convert_cycle_g8x`` make them (checked against its ``-g`` trace), once the tool
 is above the hole at R.  Every move is made even when it has no length (rs274 prints it):
 
-* ``tap_rs274`` (G84): feed and speed overrides off; feed to Z; spindle stop, reverse;
+* ``tap_rs274`` (G84; ``tap_left_rs274``, G74, the same counter-clockwise): feed and speed
+  overrides off; feed to Z; spindle stop, reverse;
   dwell P (0 without P); feed out to the clear level; spindle stop, forward; overrides on;
 * ``bore_feed_out_rs274`` (G85): feed to Z, feed to R, rapid to the clear level;
 * ``bore_dwell_stop_rs274`` (G86): feed to Z, dwell P, spindle stop, rapid to the clear
@@ -88,6 +89,7 @@ def _manual(p: _Path) -> None:
 
 SEQUENCES.update({
     CycleKind.TAP_RS274: _tap,
+    CycleKind.TAP_LEFT_RS274: _tap,
     CycleKind.BORE_FEED_OUT_RS274: _feed_out,
     CycleKind.BORE_DWELL_STOP_RS274: _dwell_stop,
     CycleKind.BORE_MANUAL_RS274: _manual,

@@ -52,5 +52,9 @@ CASES: dict[str, str | tuple[str, str]] = {
     "abort_with_parameter": "G21\n#1 = 2\nG0 X1\n(abort, depth #1 too big)\nG0 X2\nM2\n",
     "probe_g38_2": "G21 F100\nG38.2 Z-5\nM2\n",
     "polar_words": "G21\nG0 @5 ^30\nM2\n",
+    "g86_without_p": "G21 F100 S1000 M3\nG0 Z10\nG99 G86 X1 Y2 Z-3 R2\nG80\nM2\n",
+    "g82_p_is_modal": "G21 F100 S1000 M3\nG0 Z10\nG99 G82 X1 Y2 Z-3 R2 P1\nX5\nG80\nM2\n",
+    "g74_with_p": "G21 S500 M4\nF100\nG0 X0 Y0 Z10\nG98 G74 G90 X5 Y0 Z-10 R2 P1\nG80\nM2\n",
+    "g87_with_p": "G21 S500 M3\nF100\nG0 X0 Y0 Z10\nG98 G87 G90 X5 Y0 Z2 R-10 Q2 P1 I1 J0 K-5\nG80\nM2\n",
     "tool_not_in_table": "G21\nT1 M6\nM2\n",
 }

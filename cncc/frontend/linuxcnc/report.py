@@ -62,10 +62,11 @@ _FEED_MODES = {"inverse_time": "inverse_time", "feed_per_min_rs274": "per_min", 
 
 
 # The codes that read a P word in LinuxCNC 2.9 (x10: G5.2 is 52) and rs274's message otherwise.
-_P_MOTIONS = frozenset({20, 30, 50, 52, 760, 820, 840, 860, 880, 890})  # G84 reads P too (its dwell)
+_P_MOTIONS = frozenset({20, 30, 50, 52, 740, 760, 820, 840, 860, 880, 890})  # G74/G84 read P too (dwell)
 _P_G_CODES = _P_MOTIONS | {40, 100, 640}
+_P_NEEDED = frozenset({820, 860, 880, 890})  # cycles whose block must have its dwell P
 _P_M_CODES = frozenset({500, 510, 520, 530, 620, 630, 640, 650, 660, 980})
-_P_CYCLES = frozenset({"drill_dwell", "tap_rs274", "bore_dwell_stop_rs274", "bore_manual_rs274",
+_P_CYCLES = frozenset({"drill_dwell", "tap_rs274", "tap_left_rs274", "bore_dwell_stop_rs274", "bore_manual_rs274",
                        "bore_dwell_feed_out_rs274"})
 _P_MODAL_OPS = frozenset({"arc_cw", "arc_ccw", "cubic_spline", "nurbs_begin"})
 _P_WITHOUT_USER = ("P word with no G2 G3 G4 G10 G64 G5 G5.2 G76 G82 G86 G88 G89 or M50 M51 M52 M53 M62 M63 M64 M65 "
@@ -120,7 +121,12 @@ class Reporter:
             it.emit_error(dg.CONTROLLER_REJECTS, span, f"Cannot put a{'n' if rotary == 'A' else ''} "
                                                        f"{rotary.lower()} in canned cycle")
             return False
-        if any(w.letter == "P" for w in words) and not self._uses_p(words):
+        needs_p = next((round(w.value) for w in words if w.letter == "G" and round(w.value * 10) in _P_NEEDED), None)
+        if needs_p is not None and not any(w.letter == "P" for w in words) and it.dialect.option("p_word_check", False):
+            it.emit_error(dg.CONTROLLER_REJECTS, span, f"Dwell time p word missing with g{needs_p}")
+            return False
+        if any(w.letter == "P" for w in words) and it.dialect.option("p_word_check", False) and \
+                not self._uses_p(words):
             it.emit_error(dg.CONTROLLER_REJECTS, span, _P_WITHOUT_USER)
             return False
         return True
