@@ -166,6 +166,8 @@ OWORD_STRUCTURE = _define("E0350", E, "O-word control flow out of order (endwhil
 OWORD_NO_SUB = _define("E0351", E, "a call of an O-word subroutine that is neither defined nor found in an -I folder")
 NAMED_UNDEFINED = _define("E0352", E, "a named parameter is read before it was set")
 LINUXCNC_PRINT = _define("N0353", N, "the text of a LinuxCNC (PRINT,...) comment")
+PROGRAM_NO_END = _define("E0326", E, "a LinuxCNC main program ends without M2/M30 or its closing %")
+PROGRAM_ABORT = _define("E0327", E, "the program stopped at a LinuxCNC (ABORT,...) comment")
 
 # --- E05xx: frames and compensation ------------------------------------------------
 TRANSFORM_WORDS = _define("E0501", E, "a frame or compensation code lacks a word it needs, or a word is out of range")

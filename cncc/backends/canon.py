@@ -208,6 +208,8 @@ def _set_mode(c: SetMode, last_g5x: str, last_g92: str, fmt: CanonFormat) -> Ite
         u = 25.4 if fmt.tool_table_inch else 1.0
         yield from _lines(fmt, "tool_table_entry", tool=tool, x=x_mm / u, z=z_mm / u, diameter=dia_mm / u,
                           front=float(front), back=float(back), orientation=orient)
+    elif c.name == "overrides":  # value: True (on) / False (off)
+        yield from _lines(fmt, "overrides_on" if c.value else "overrides_off")
     elif c.name == "spindle_mode":
         yield from _lines(fmt, "spindle_mode", css_max=float(c.value or 0.0))
 

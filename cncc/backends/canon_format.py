@@ -51,6 +51,8 @@ DEFAULTS: dict[str, str | list[str]] = {
     "nurbs_feed": [],  # G5 / G5.1 / G5.2 as one call {points} {order}; its segments are not written
     "spindle_mode": [],
     "xy_rotation": [],  # after a work-system change: {deg}  # the spindle mode reset at a program end: {css_max}
+    "overrides_on": [],  # M48, and after LinuxCNC's G84
+    "overrides_off": [],  # M49, and during LinuxCNC's G84
     "end_of_trace": [],  # lines after the last command (the stand-alone interpreter's resets)
 }
 

@@ -293,9 +293,25 @@ def _arc(it: Interpreter, ctx: BlockContext, end: Vec6, clockwise: bool) -> None
         return
     if it.dialect.option("helix_feed", "projection") == "projection" and end[plane.normal] != start[plane.normal]:
         f = _helix_path_feed(start, end, center, plane, clockwise, f)
-    turns = -1 if clockwise else 1
+    turns = _turns(it, ctx)
+    if turns is None:
+        return
+    turns = -turns if clockwise else turns
     ctx.out.append(Arc(ctx.span, it.frame, start, end, center, turns, plane, f, block_motion(it, ctx)))
     it.pos = end
+
+
+def _turns(it: Interpreter, ctx: BlockContext) -> int | None:
+    """The number of turns of an arc: 1, or the dialect's turns word (LinuxCNC: P on G2/G3)."""
+    letter = str(it.dialect.option("arc_turns_word", ""))
+    w = ctx.words.get(letter) if letter else None
+    if w is None:
+        return 1
+    if w.value < 1 or w.value != int(w.value):
+        it.emit_error(dg.NUMBER_RANGE, it.word_span(w), f"the number of turns {letter} of an arc must be a positive "
+                      "integer")
+        return None
+    return int(w.value)
 
 
 def _helix_path_feed(start: Vec6, end: Vec6, center: Vec6, plane: Plane, clockwise: bool, feed: float) -> float:

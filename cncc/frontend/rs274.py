@@ -44,6 +44,7 @@ class Rs274State:
     nurbs: list[tuple[float, float, float]] = field(default_factory=list)  # G5.2 control points x, y, weight
     nurbs_order: int = 3
     naive_mm: float = 0.0  # G64 Q (the naive-CAM tolerance in force)
+    rotation_deg: dict[int, float] = field(default_factory=dict)  # G10 L2 R: work system -> XY rotation
 
 
 _STATES: WeakKeyDictionary[Interpreter, Rs274State] = WeakKeyDictionary()
@@ -171,9 +172,10 @@ def _g41_1(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
 
 # ---- G92.1 / G92.2 / G92.3 -------------------------------------------------------------------
 def _set_g92(it: Interpreter, ctx: BlockContext, shift: Vec6) -> None:
+    """Set the G92 offset; like LinuxCNC, report it on every G92/G52/G92.x (changed or not)."""
     if shift != it.frame.g92_offset_mm:
         it.set_frame(replace(it.frame, g92_offset_mm=shift))
-        ctx.out.append(SetMode(ctx.span, it.frame, "g92_offset", shift))
+    ctx.out.append(SetMode(ctx.span, it.frame, "g92_offset", shift))
 
 
 @handler("set_origin_clear", "set_origin_suspend", "set_origin_restore")
@@ -196,6 +198,19 @@ def _g92(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
         w = ctx.words.get(letter)
         if w is not None:
             shift[i] += it.pos[i] - it.reader.axis_value(w)
+    state(it).g92_saved_mm = _vec(shift)
+    _set_g92(it, ctx, _vec(shift))
+
+
+@handler("local_offset_rs274")
+def _g52(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
+    """G52 as LinuxCNC has it: the given axes' G92 offsets are set to the words (no stacking)."""
+    ctx.axis_used = True
+    shift = list(it.frame.g92_offset_mm)
+    for i, letter in enumerate(AXES):
+        w = ctx.words.get(letter)
+        if w is not None:
+            shift[i] = it.reader.axis_value(w)
     state(it).g92_saved_mm = _vec(shift)
     _set_g92(it, ctx, _vec(shift))
 

@@ -94,6 +94,21 @@ def _work_entry(it: Interpreter, ctx: BlockContext, table: int, index: int) -> N
     new: Vec6 = (vals[0], vals[1], vals[2], vals[3], vals[4], vals[5])
     it.options.work_offsets_mm[index] = new
     ctx.out.append(SetMode(ctx.span, it.frame, "work_table", (index, old, new)))  # translation writes it (G10)
-    if f.work_index == index and new != f.work_offset_mm:
-        it.set_frame(replace(f, work_offset_mm=new))
+    rw = ctx.words.get("R")
+    if rw is not None and table == 2:
+        from cncc.frontend.rs274 import state
+
+        state(it).rotation_deg[index] = rw.value
+    if f.work_index == index:  # LinuxCNC reports the active system's offsets and rotation, changed or not
+        if new != f.work_offset_mm:
+            it.set_frame(replace(f, work_offset_mm=new))
         ctx.out.append(SetMode(ctx.span, it.frame, "g5x_offset", index))
+        ctx.out.append(SetMode(ctx.span, it.frame, "xy_rotation", rotation_deg(it, index)))
+
+
+def rotation_deg(it: Interpreter, index: int) -> float:
+    """The XY rotation of work system ``index`` (G10 L2 R; the trace reports it, cncc does not
+    rotate the moves yet: docs/dialects-notes.md)."""
+    from cncc.frontend.rs274 import state
+
+    return state(it).rotation_deg.get(index, 0.0)

@@ -291,6 +291,8 @@ def _comp(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
         return
     dw = ctx.words.get("D")
     index = it.frame.comp_index or st.d_index
+    if dw is None and it.dialect.option("offset_default", "last") == "loaded_tool":
+        index = it.modal.tool_loaded  # LinuxCNC: G41/G42 without D use the tool in the spindle
     if dw is not None:
         got = _index(it, dw)
         if got is None:
@@ -320,6 +322,8 @@ def _length(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     st = _state(it)
     st.length_op = c.op
     index = it.frame.tool_length_index
+    if it.dialect.option("offset_default", "last") == "loaded_tool":
+        index = it.modal.tool_loaded  # LinuxCNC: G43 without H uses the tool in the spindle
     hw = ctx.words.get("H")
     if hw is not None:
         got = _index(it, hw)

@@ -241,6 +241,13 @@ class CycleKind(enum.Enum):
     BORE_ORIENT_OUT = "bore_orient_out"  # G88: dwell, orient, shift I J, feed out, shift back
     BORE_ORIENT_RAPID_OUT = "bore_orient_rapid_out"  # G88 read as its title says (rapid out)
     BACK_BORE_RETURN = "back_bore_return"  # G89: back bore that feeds back down to R before leaving
+    # LinuxCNC 2.9's own sequences (rs274's interp_cycles; cncc/passes/linuxcnc_cycles.py)
+    TAP_RS274 = "tap_rs274"  # G84: overrides off, feed in, reverse, dwell, feed out to the clear level
+    TAP_LEFT_RS274 = "tap_left_rs274"  # G74: the same with the spindle turning counter-clockwise
+    BORE_FEED_OUT_RS274 = "bore_feed_out_rs274"  # G85: feed in, feed out to R, rapid to the clear level
+    BORE_DWELL_STOP_RS274 = "bore_dwell_stop_rs274"  # G86: feed in, dwell, stop, rapid out, restart
+    BORE_MANUAL_RS274 = "bore_manual_rs274"  # G88: feed in, dwell, stop, program stop, restart (tool stays)
+    BORE_DWELL_FEED_OUT_RS274 = "bore_dwell_feed_out_rs274"  # G89: feed in, dwell, feed out to the clear level
 
 
 @dataclass(frozen=True, slots=True)
@@ -281,6 +288,7 @@ class Cycle:
     pattern_words: tuple[tuple[str, float], ...] = ()  # its words as read (mm, deg, counts; origin by axis letter)
     motion: Motion = DEFAULT_MOTION
     lift_pause_s: float = 0.0  # G73/G83: dwell before each peck lift (SZGH User P8)
+    zero_moves: bool = False  # LinuxCNC: the move over each hole and a dwell are made even with no length or time
     lift_at_feed: bool = False  # G73/G83: peck lifts at feed instead of rapid (User P8 < 0)
 
     @property

@@ -77,6 +77,7 @@ class CutterComp(Pass):
     lookahead: int = 2  # moves without plane motion looked through for the next corner
     gouge_check: bool = True
     startup: str = "type_a"  # or "perpendicular": square off the start point, then the first element (SERIES 8)
+    # or "end_normal" (LinuxCNC): the entry move ends square to itself; the next corner is joined as usual
 
     def run(self, cmds: Iterable[Command], ctx: PassContext) -> Iterator[Command]:
         comp = _Comp(self, ctx)
@@ -270,7 +271,7 @@ class _Comp:
     def _corner(self, p: _Pending, b: Element, bc: Motion) -> list[Pt]:
         """Settle the corner between the pending element and ``b``; return connector points."""
         a = p.el
-        if p.startup:  # type A start-up: square to the next element
+        if p.startup and self.opts.startup != "end_normal":  # type A start-up: square to the next element
             a.q1 = b.q0
             return []
         if norm(sub(a.p1, b.p0)) > 1e-6 or a.side != b.side or abs(a.r - b.r) > 1e-12:

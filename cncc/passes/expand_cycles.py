@@ -66,7 +66,11 @@ def expand(c: Cycle) -> list[Command]:
     for hole in c.holes:
         path.hole = hole
         path.frame = c.frame
-        path.position(path.at(path.pos[c.axis]))
+        over = path.at(path.pos[c.axis])
+        if c.zero_moves and over == path.pos:  # rs274 prints the move even when it has no length
+            path.out.append(Rapid(c.span, c.frame, over, over, path.motion, c.code))
+        else:
+            path.position(over)
         path.frame = path.levels_frame
         sequence(path)
     return path.out
@@ -92,7 +96,7 @@ class _Path:
         self.hole: Vec6 = c.start
         self.motion: Motion = replace(c.motion, mode=PathMode.EXACT_STOP)
         running = c.spindle in (SpindleState.CW, SpindleState.CCW)
-        default = SpindleState.CCW if c.kind is CycleKind.TAP_LEFT else SpindleState.CW
+        default = SpindleState.CCW if c.kind in (CycleKind.TAP_LEFT, CycleKind.TAP_LEFT_RS274) else SpindleState.CW
         self.forward = c.spindle if running else default
         self.down = -1.0 if c.bottom_mm < c.r_mm else 1.0
         self.frame = c.frame
@@ -139,7 +143,7 @@ class _Path:
         (self.feed if self.c.lift_at_feed else self.rapid)(p)
 
     def dwell(self) -> None:
-        if self.c.dwell_s > 0:
+        if self.c.dwell_s > 0 or self.c.zero_moves:
             self.out.append(Dwell(self.c.span, self.c.frame, self.c.dwell_s))
 
     def spindle(self, state: SpindleState) -> None:
@@ -282,4 +286,5 @@ SEQUENCES: dict[CycleKind, Callable[[_Path], None]] = {
     CycleKind.BORE_MANUAL: _manual,
 }
 
+from cncc.passes import linuxcnc_cycles as _linuxcnc_cycles  # noqa: E402,F401  (registers the LinuxCNC kinds)
 from cncc.passes import series8_cycles as _series8_cycles  # noqa: E402,F401  (registers the SERIES 8 kinds)

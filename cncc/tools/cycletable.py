@@ -20,13 +20,14 @@ from pathlib import Path
 
 from cncc.api import compile_commands
 from cncc.dialects import CodeDef, available, load_dialect
-from cncc.ir import Command, Dwell, Linear, Rapid, SetMode, Spindle, SpindleState, Wait
+from cncc.ir import Command, Dwell, Linear, Rapid, SetMode, Spindle, SpindleState, Stop, Wait
 
 DOC = Path(__file__).resolve().parents[2] / "docs" / "cycles.md"
 BEGIN, END = "<!-- cycletable:begin -->", "<!-- cycletable:end -->"
 _PECK_OR_SHIFT = ("peck", "peck_high_speed", "fine_bore", "back_bore")
 _DWELLS = ("drill_dwell", "bore_dwell_feed_out", "tap", "tap_left", "fine_bore", "back_bore", "bore_manual",
-           "bore_dwell_stop_out", "bore_orient_out", "back_bore_return")
+           "bore_dwell_stop_out", "bore_orient_out", "back_bore_return",
+           "tap_rs274", "tap_left_rs274", "bore_dwell_stop_rs274", "bore_manual_rs274", "bore_dwell_feed_out_rs274")
 _BACK = ("back_bore", "back_bore_return")
 # SERIES 8's own words: G83 I (first depth level) J (peck), G88/G89 I (shift).
 _OWN_WORDS = {"peck_first": "I-2. J4.", "bore_orient_out": "I2.", "back_bore_return": "I2."}
@@ -94,13 +95,18 @@ def _describe(cmds: list[Command], back: bool) -> str:
                 words.append(f"sync {c.value:g} mm/rev" if c.value else "sync off")
             case Wait():
                 words.append("operator retract")
+            case Stop() if cycle:
+                words.append("program stop (operator retract)")
             case _:
                 pass
     return ", ".join(words)
 
 
 def _run(dialect: str, text: str) -> list[Command]:
-    cmds, result = compile_commands(text, dialect=dialect)
+    # the snippets are not whole programs (LinuxCNC wants M2/M30 at the end, E0326) and give
+    # every cycle the same words (LinuxCNC rejects a P word on G87)
+    opts = {"program_end_required": False, "p_word_check": False} if dialect == "linuxcnc" else {}
+    cmds, result = compile_commands(text, dialect=dialect, dialect_options=opts)
     errors = [d.message for d in result.sink if d.severity.name == "ERROR"]
     if errors:
         raise SystemExit(f"cycletable: {dialect}: {text!r}: {errors}")

@@ -28,7 +28,7 @@ def test_verbose_reports_the_guess(tmp_path: object, capsys: pytest.CaptureFixtu
     import pathlib
 
     p = pathlib.Path(str(tmp_path)) / "part.ngc"
-    p.write_text("o100 if [1]\nG0 X1\no100 endif\n")
+    p.write_text("o100 if [1]\nG0 X1\no100 endif\nM2\n")
     assert main(["-v", "--emit=none", str(p)]) == 0
     err = capsys.readouterr().err
     assert "N0251" in err and "dialect linuxcnc" in err

@@ -18,6 +18,9 @@ import pytest
 from cncc.frontend import nurbs
 from tests.helpers import calls, canon, compile_commands
 
+# The snippets below are not whole programs: no M2/M30 at the end (E0326 is tested on its own).
+SNIPPET = {"dialect_options": {"program_end_required": False}}
+
 P = " N..... "
 END_LINES = ["SET_G5X_OFFSET(1, 0.0000, 0.0000, 0.0000, 0.0000, 0.0000, 0.0000)", "SET_XY_ROTATION(0.0000)",
              "SET_FEED_MODE(0, 0)", "SET_FEED_RATE(0.0000)", "STOP_SPINDLE_TURNING(0)", "SET_SPINDLE_MODE(0 0.0000)",
@@ -26,14 +29,14 @@ END_LINES = ["SET_G5X_OFFSET(1, 0.0000, 0.0000, 0.0000, 0.0000, 0.0000, 0.0000)"
 
 def trace(text: str) -> list[str]:
     """Calls after the six start-up calls, without the two ON_RESET() rs274 ends with."""
-    lines, r = canon(text, "linuxcnc")
+    lines, r = canon(text, "linuxcnc", **SNIPPET)
     assert not r.sink.has_errors, [d.message for d in r.sink]
     assert lines[-2:] == [P + "ON_RESET()"] * 2
     return [ln.removeprefix(P) for ln in lines[:-2]]
 
 
 def first_error(text: str) -> str:
-    _, r = canon(text, "linuxcnc")
+    _, r = canon(text, "linuxcnc", **SNIPPET)
     msgs = [d.message for d in r.sink if d.severity.label == "error"]
     assert msgs, "expected an error"
     return msgs[0]
@@ -131,7 +134,7 @@ def test_g33_spindle_synchronised_moves() -> None:
 def test_g33_ir_is_a_synchronised_linear_move() -> None:
     from cncc.ir import Linear, SetMode
 
-    cmds, r = compile_commands("S500 M3\nG33 Z-10 K1.5\n", dialect="linuxcnc")
+    cmds, r = compile_commands("S500 M3\nG33 Z-10 K1.5\n", dialect="linuxcnc", **SNIPPET)
     assert r.ok
     sync = [c for c in cmds if isinstance(c, SetMode | Linear)]
     assert [(type(c).__name__, getattr(c, "value", None)) for c in sync] == [
@@ -152,7 +155,7 @@ def test_g33_1_rigid_tap_returns_to_the_start() -> None:
 def test_g33_1_ir_feeds_in_reverses_and_feeds_out() -> None:
     from cncc.ir import Linear, Spindle, SpindleState
 
-    cmds, _ = compile_commands("S100 M3\nG33.1 Z-5 K1.25\n", dialect="linuxcnc")
+    cmds, _ = compile_commands("S100 M3\nG33.1 Z-5 K1.25\n", dialect="linuxcnc", **SNIPPET)
     moves = [c for c in cmds if isinstance(c, Linear)]
     assert [m.end[2] for m in moves] == [-5.0, 0.0]
     assert [c.state for c in cmds if isinstance(c, Spindle)] == [SpindleState.CW, SpindleState.CCW, SpindleState.CW]
@@ -190,7 +193,7 @@ def test_g5_biarcs_follow_the_bezier() -> None:
     # it, and stay within 5 um of it (the biarc error of 16 pieces on this 10 mm curve).
     from cncc.ir import Arc, Linear
 
-    cmds, r = compile_commands("F100\nG5 I0 J3 P0 Q-3 X10 Y1\n", dialect="linuxcnc")
+    cmds, r = compile_commands("F100\nG5 I0 J3 P0 Q-3 X10 Y1\n", dialect="linuxcnc", **SNIPPET)
     assert r.ok
     segs = [c for c in cmds if isinstance(c, Arc | Linear)]
     assert len(segs) == 32  # 16 samples x 2 arcs
@@ -246,7 +249,7 @@ def test_nurbs_knots_and_circle_weights() -> None:
 
 def test_straight_spline_is_a_line() -> None:
     # Collinear control points: LinuxCNC's biarc formula divides by zero; cncc draws lines.
-    cmds, r = compile_commands("F100\nG5.1 I1 J0 X4 Y0\n", dialect="linuxcnc")
+    cmds, r = compile_commands("F100\nG5.1 I1 J0 X4 Y0\n", dialect="linuxcnc", **SNIPPET)
     assert r.ok
     ends = [c.end[0] for c in cmds if hasattr(c, "end")]
     assert ends and ends[-1] == pytest.approx(4.0)

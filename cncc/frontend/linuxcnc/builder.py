@@ -23,6 +23,7 @@ class OWord:
     args: tuple[sx.Expr, ...]
     start: int
     end: int
+    label_expr: sx.Expr | None = None  # o#<n> call, O[...] call: the number is computed when the line runs
 
 
 def oword_of(statements: tuple[object, ...]) -> OWord | None:
@@ -77,7 +78,7 @@ class LinuxcncBuilder:
         args: list[sx.Expr] = []
         for it in items[1:]:
             if isinstance(it, Token) and it.type == "OKEYWORD":
-                keyword = str(it).lower()
+                keyword = "".join(str(it).split()).lower()  # "else if", "end sub" as LinuxCNC reads them
                 end = self.base + (it.start_pos or 0) + len(str(it))
             elif isinstance(it, sx.CommentItem):
                 continue
@@ -85,3 +86,9 @@ class LinuxcncBuilder:
                 args.append(it)
                 end = int(it.end) + 1
         return OWord(label_key(str(label)), keyword, tuple(args), start, end)
+
+    def computed_oword(self, items: list[Any]) -> OWord:
+        tok: Token = items[0]
+        start = self.base + (tok.start_pos or 0)
+        inner = self.oword([Token("OLABEL", "o0", start_pos=tok.start_pos), *items[2:]])
+        return OWord("", inner.keyword, inner.args, start, inner.end, label_expr=items[1])

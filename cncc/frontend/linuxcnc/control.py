@@ -19,9 +19,19 @@ if TYPE_CHECKING:
 
 def run_oword(ex: LinuxcncExecutor, fr: Frame, i: int, ow: OWord) -> None:
     fx = fr.index
+    if ow.label_expr is not None:  # a computed number: only a call can have one
+        from dataclasses import replace
+
+        span = fx.span_of(ow.start, ow.end)
+        if ow.keyword != "call":
+            ex.fail(dg.OWORD_STRUCTURE, span, f"a computed O number is only allowed with call, not {ow.keyword}")
+            return
+        ow = replace(ow, label=str(round(ex.ev.number(ow.label_expr))), label_expr=None)
     kw = ow.keyword
     args = [ex.ev.number(a) for a in ow.args]
     span = fx.span_of(ow.start, ow.end)
+    if kw == "":
+        return  # a bare O<number> or O<name> line names the program (an M98 target); running it does nothing
     if kw == "sub":
         fr.pc = fx.subs[ow.label][1] + 1  # a definition met in the flow is skipped
     elif kw in ("endsub", "return"):

@@ -15,7 +15,7 @@ from dataclasses import dataclass, field
 from cncc import diagnostics as dg
 from cncc.frontend.syntax import BinOp, Call, Expr, Neg, Num, Var
 
-_EPS = 1e-9  # LinuxCNC's TOLERANCE_EQUAL (comparisons of reals)
+_EPS = 0.0001  # LinuxCNC's TOLERANCE_EQUAL: EQ and NE compare reals within it
 
 
 class EvalError(Exception):
@@ -79,7 +79,7 @@ def _power(a: float, b: float) -> float:
 
 _BINARY: dict[str, Callable[[float, float], float]] = {
     "+": lambda a, b: a + b, "-": lambda a, b: a - b, "*": lambda a, b: a * b, "/": lambda a, b: a / b,
-    "MOD": lambda a, b: a - b * math.floor(a / b), "**": _power,
+    "MOD": lambda a, b: math.fmod(a, b) + (abs(b) if math.fmod(a, b) < 0 else 0.0), "**": _power,  # [7 MOD -3] = 1
     "EQ": lambda a, b: float(abs(a - b) < _EPS), "NE": lambda a, b: float(abs(a - b) >= _EPS),
     "GT": lambda a, b: float(a > b), "GE": lambda a, b: float(a >= b),
     "LT": lambda a, b: float(a < b), "LE": lambda a, b: float(a <= b),

@@ -31,7 +31,7 @@ from cncc.frontend.syntax import Assign, Block, CommentItem, Word
 from cncc.ir import Command, Message
 from cncc.source import SourceFile, Span
 
-_MESSAGE = re.compile(r"^\(\s*(MSG|DEBUG|PRINT)\s*,(.*)\)$", re.IGNORECASE | re.DOTALL)
+_MESSAGE = re.compile(r"^\(\s*(MSG|DEBUG|PRINT|ABORT)\s*,(.*)\)$", re.IGNORECASE | re.DOTALL)
 _PARAM_IN_TEXT = re.compile(r"#\s*<[^>]*>|#\d+")
 
 
@@ -70,6 +70,9 @@ class LinuxcncExecutor:
         self.reporter = Reporter(it, self.comments)
         self.files: dict[str, FlowIndex] = {}
         self.stack: list[Frame] = []
+        self.main: FlowIndex | None = None  # the main program (M2/M30 or its closing % must end it)
+        self.opened = False  # the main program opens with a % line
+        self.line = 0  # the line of the block running (#<_line>)
         self.out: list[Command] = []
         self.stopped = False
 
@@ -92,7 +95,7 @@ class LinuxcncExecutor:
             "_absolute": float(not it.modal.incremental), "_incremental": float(it.modal.incremental),
             "_feed": it.modal.feed or 0.0, "_rpm": it.modal.spindle_rpm,
             "_current_tool": float(it.modal.tool_loaded), "_selected_tool": float(it.modal.tool_selected),
-            "_value": 0.0, "_value_returned": 0.0,
+            "_value": 0.0, "_value_returned": 0.0, "_line": float(self.line),
         }
         return values.get(name)
 
@@ -102,6 +105,8 @@ class LinuxcncExecutor:
         if index is None:
             return
         self.stack = [Frame(index, 0)]
+        self.main = index
+        self.opened = next((b.percent for b in index.blocks if b.percent or b.words or b.statements), False)
         steps = 0
         while self.stack and not self.stopped and not self.it.ended:
             fr = self.stack[-1]
@@ -119,9 +124,27 @@ class LinuxcncExecutor:
                 yield from self.out
                 self.out = []
 
+    def _percent(self, fr: Frame, i: int, block: Block) -> bool:
+        """A ``%`` line: the opening one is skipped, the closing one ends the program (the rest of
+        the file is not read); in a file that does not open with ``%`` it is an error."""
+        first = next(k for k, b in enumerate(fr.index.blocks) if b.percent or b.words or b.statements)
+        if i == first:
+            return False
+        if self.opened:
+            self.stack.clear()
+        else:
+            self.fail(dg.SYNTAX, fr.index.span(block), "Bad character '%' used")
+        return True
+
     def _fell_off(self, fr: Frame) -> None:
         if fr.caller is None:
             self.stack.clear()
+            blocks = fr.index.blocks
+            required = bool(self.it.dialect.option("program_end_required", False))
+            if required and fr.index is self.main and blocks:  # M2/M30 or the closing % must end the file
+                last = fr.index.span(blocks[-1])
+                self.fail(dg.PROGRAM_NO_END, Span(last.source_id, last.end, last.end), "File ended with no percent "
+                          "sign" + ("" if self.opened else " or program end"))
         else:
             self.stack.pop()
 
@@ -129,7 +152,10 @@ class LinuxcncExecutor:
         i = fr.pc
         block = fr.index.blocks[i]
         fr.pc = i + 1
+        self.line = block.line
         if block.block_delete and self.it.options.block_delete:
+            return
+        if block.percent and fr.index is self.main and self._percent(fr, i, block):
             return
         errors = self.sink.errors
         try:
@@ -146,7 +172,7 @@ class LinuxcncExecutor:
             self.stopped = True
 
     def _block(self, fr: Frame, block: Block) -> None:
-        words = tuple(self._value_word(w) for w in block.words)
+        words = self._drop_g80(tuple(self._value_word(w) for w in block.words))
         sets = [(s.target, self.ev.number(s.expr)) for s in block.statements if isinstance(s, Assign)]
         for target, value in sets:
             if target.index is None:
@@ -175,6 +201,14 @@ class LinuxcncExecutor:
         self.out.extend(self.it.execute(nc))
         self.reporter.after_block(Span(self.it.source_id, block.start, block.end), words, self.out, at, before)
 
+    def _drop_g80(self, words: tuple[Word, ...]) -> tuple[Word, ...]:
+        """G80 beside another motion code (``G0 G80 X5``): LinuxCNC ignores the G80."""
+        motions = [w for w in words if w.letter == "G" and (c := self.it.dialect.code("G", round(w.value * 10)))
+                   is not None and c.group == "motion"]
+        if len(motions) < 2:
+            return words
+        return tuple(w for w in words if not (w in motions and round(w.value * 10) == 800))
+
     def _value_word(self, w: Word) -> Word:
         if w.expr is None:
             return w
@@ -194,7 +228,9 @@ class LinuxcncExecutor:
             span = Span(self.it.source_id, c.start, c.end)
             if kind in ("DEBUG", "PRINT"):
                 text = self._substitute(text, c.start)
-            if kind == "PRINT":
+            if kind == "ABORT":  # rs274 stops with the text (parameters substituted) as its error
+                self.fail(dg.PROGRAM_ABORT, span, self._substitute(m.group(2), c.start))
+            elif kind == "PRINT":
                 self.sink.emit(dg.LINUXCNC_PRINT, span, text)
             else:
                 self.out.append(Message(span, self.it.frame, text))

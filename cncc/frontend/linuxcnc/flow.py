@@ -76,7 +76,8 @@ class _Matcher:
                     self.fx.programs[str(round(b.words[0].value))] = i
                 continue
             self.fx.owords[i] = ow
-            self.line(i, ow)
+            if ow.label_expr is None:  # a computed call matches nothing
+                self.line(i, ow)
         for label, kw, line in self.open:
             self.error(line, f"o{label} {kw} has no matching end{'sub' if kw == 'sub' else kw}")
         return self.ok
@@ -91,6 +92,8 @@ class _Matcher:
         kw, fx = ow.keyword, self.fx
         if kw == "":
             fx.programs[ow.label] = i
+        elif kw == "sub" and any(k == "sub" for _, k, _ in self.open):
+            self.error(i, "Nested subroutine definition")
         elif kw in ("sub", "if", "repeat", "do"):
             self.open.append((ow.label, kw, i))
             if kw == "if":

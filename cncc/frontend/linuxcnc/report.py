@@ -23,6 +23,7 @@ from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING
 
 from cncc import diagnostics as dg
+from cncc.frontend.linuxcnc.rotation import Placement, reexpress, rotation_in_use
 from cncc.frontend.syntax import Word
 from cncc.ir import (
     Command,
@@ -33,6 +34,7 @@ from cncc.ir import (
     Cycle,
     Dwell,
     FeedRate,
+    Frame,
     PathMode,
     Plane,
     Rapid,
@@ -59,6 +61,18 @@ _ALWAYS = {"comp_off": "comp_off", "comp_left": "comp_left", "comp_right": "comp
 _FEED_MODES = {"inverse_time": "inverse_time", "feed_per_min_rs274": "per_min", "feed_per_rev_rs274": "per_rev"}
 
 
+# The codes that read a P word in LinuxCNC 2.9 (x10: G5.2 is 52) and rs274's message otherwise.
+_P_MOTIONS = frozenset({20, 30, 50, 52, 740, 760, 820, 840, 860, 880, 890})  # G74/G84 read P too (dwell)
+_P_G_CODES = _P_MOTIONS | {40, 100, 640}
+_P_NEEDED = frozenset({820, 860, 880, 890})  # cycles whose block must have its dwell P
+_P_M_CODES = frozenset({500, 510, 520, 530, 620, 630, 640, 650, 660, 980})
+_P_CYCLES = frozenset({"drill_dwell", "tap_rs274", "tap_left_rs274", "bore_dwell_stop_rs274", "bore_manual_rs274",
+                       "bore_dwell_feed_out_rs274"})
+_P_MODAL_OPS = frozenset({"arc_cw", "arc_ccw", "cubic_spline", "nurbs_begin"})
+_P_WITHOUT_USER = ("P word with no G2 G3 G4 G10 G64 G5 G5.2 G76 G82 G86 G88 G89 or M50 M51 M52 M53 M62 M63 M64 M65 "
+                   "M66 M98 or user M code to use it")
+
+
 @dataclass(frozen=True, slots=True)
 class Before:
     """The interpreter's modes before a block."""
@@ -67,12 +81,18 @@ class Before:
     arc_absolute: bool
     work_index: int
     tool_length_mm: float
+    frame: Frame
+    theta_deg: float  # the XY rotation of the active work system
+    pos: Vec6
 
     @staticmethod
     def of(it: Interpreter) -> Before:
         from cncc.frontend.rs274 import state
 
-        return Before(it.modal.incremental, state(it).arc_absolute, it.frame.work_index, it.frame.tool_length_mm)
+        st = state(it)
+        theta = st.rotation_deg.get(it.frame.work_index, 0.0) if st.rotation_deg else 0.0
+        return Before(it.modal.incremental, st.arc_absolute, it.frame.work_index, it.frame.tool_length_mm,
+                      it.frame, theta, it.pos)
 
 
 @dataclass(slots=True)
@@ -83,6 +103,7 @@ class Reporter:
     comments: dict[str, str]
     flood: bool = False
     mist: bool = False
+    raised_cycle: str = ""  # the cycle code whose initial level was below R (each block rises to R again)
 
     def allowed(self, span: Span, words: tuple[Word, ...]) -> bool:
         """LinuxCNC's checks of a block against the state before it (an error: not run)."""
@@ -95,7 +116,48 @@ class Reporter:
                 it.emit_error(dg.COMP_PLANE_CHANGE, span, f"{c.name}: the plane cannot change while cutter "
                                                           "compensation is on")
                 return False
+        rotary = next((w.letter for w in words if w.letter in "ABC"), None)
+        if rotary is not None and self._in_cycle(words):
+            it.emit_error(dg.CONTROLLER_REJECTS, span, f"Cannot put a{'n' if rotary == 'A' else ''} "
+                                                       f"{rotary.lower()} in canned cycle")
+            return False
+        needs_p = next((round(w.value) for w in words if w.letter == "G" and round(w.value * 10) in _P_NEEDED), None)
+        if needs_p is not None and not any(w.letter == "P" for w in words) and it.dialect.option("p_word_check", False):
+            it.emit_error(dg.CONTROLLER_REJECTS, span, f"Dwell time p word missing with g{needs_p}")
+            return False
+        if any(w.letter == "P" for w in words) and it.dialect.option("p_word_check", False) and \
+                not self._uses_p(words):
+            it.emit_error(dg.CONTROLLER_REJECTS, span, _P_WITHOUT_USER)
+            return False
         return True
+
+    def _in_cycle(self, words: tuple[Word, ...]) -> bool:
+        """The block runs a canned cycle: a cycle code in it, or the cycle in force and no other motion code."""
+        it = self.it
+        for w in words:
+            c = it.dialect.code("G", round(w.value * 10)) if w.letter == "G" else None
+            if c is not None and c.group in ("cycle", "motion"):
+                return c.group == "cycle" or c.op == "cycle"
+        return bool(it.modal.cycle)
+
+    def _uses_p(self, words: tuple[Word, ...]) -> bool:
+        """rs274's check_other_codes: a P word needs one of the codes that read it (the motion in force
+        counts for G2/G3/G5/G82/G86/G88/G89)."""
+        it = self.it
+        motion = None
+        for w in words:
+            v = round(w.value * 10)
+            if w.letter == "G":
+                if v in _P_G_CODES:
+                    return True
+                c = it.dialect.code("G", v)
+                if c is not None and c.group == "motion":
+                    motion = v
+            elif w.letter == "M" and (v in _P_M_CODES or 1000 <= v < 2000):
+                return True
+        if motion is None:
+            return it.modal.cycle in _P_CYCLES or it.modal.motion in _P_MODAL_OPS
+        return motion in _P_MOTIONS
 
     def after_block(self, span: Span, words: tuple[Word, ...], out: list[Command], at: int, before: Before) -> None:
         it = self.it
@@ -114,6 +176,8 @@ class Reporter:
         if "work" in ops:
             self._after_work_select(out, at)
         self._cycles(out, at)
+        if before.theta_deg or rotation_in_use(it):
+            reexpress(it, Placement.of_frame(before.frame, before.theta_deg), before.pos, words, out, at)
         self._program_end(out, at)
         self._track_coolant(out[at:])
 
@@ -170,15 +234,22 @@ class Reporter:
 
     def _after_work_select(self, out: list[Command], at: int) -> None:
         """A work-system change reports the G92 offset and the XY rotation after the G5x offset."""
+        from cncc.frontend.rs274_g10 import rotation_deg
+
         for k in range(len(out) - 1, at - 1, -1):
             c = out[k]
-            if isinstance(c, SetMode) and c.name == "g5x_offset":
+            nxt = out[k + 1] if k + 1 < len(out) else None
+            if isinstance(c, SetMode) and c.name == "g5x_offset" and \
+                    not (isinstance(nxt, SetMode) and nxt.name == "xy_rotation"):
                 out[k + 1:k + 1] = [SetMode(c.span, c.frame, "g92_offset", c.frame.g92_offset_mm),
-                                    SetMode(c.span, c.frame, "xy_rotation", 0.0)]
+                                    SetMode(c.span, c.frame, "xy_rotation", rotation_deg(self.it, c.frame.work_index))]
 
     # ---- canned cycles
     def _cycles(self, out: list[Command], at: int) -> None:
         from cncc.frontend.rs274 import state
+
+        if not self.it.modal.cycle:
+            self.raised_cycle = ""
 
         k = at
         while k < len(out):
@@ -187,7 +258,7 @@ class Reporter:
                 k += 1
                 continue
             pre: list[Command] = []
-            c, rise = self._rise_to_r(c)
+            c, rise = self._rise_to_r(replace(c, zero_moves=True))
             if rise is not None:
                 pre.append(rise)
             path = self.it.modal.path
@@ -205,8 +276,11 @@ class Reporter:
         from cncc.frontend import cycles
 
         n = c.axis
-        if c.kind.value == "back_bore" or c.start[n] >= c.r_mm:
+        if self.raised_cycle and self.raised_cycle != c.code:
+            self.raised_cycle = ""
+        if c.kind.value == "back_bore" or c.start[n] > c.r_mm or (c.start[n] == c.r_mm and not self.raised_cycle):
             return c, None
+        self.raised_cycle = c.code  # rs274 compares its remembered initial level with R in every block
         up = _with(c.start, n, c.r_mm)
         data = cycles.cycle_data(self.it)
         if data is not None:  # later blocks of this cycle keep R as their initial level
@@ -223,7 +297,10 @@ class Reporter:
         resets: list[Command] = []
         g54 = it.options.work_offsets_mm.get(1, (0.0,) * 6)
         it.set_frame(replace(it.frame, work_index=1, work_offset_mm=g54))
-        resets += [SetMode(span, it.frame, "g5x_offset", 1), SetMode(span, it.frame, "xy_rotation", 0.0)]
+        from cncc.frontend.rs274_g10 import rotation_deg
+
+        resets += [SetMode(span, it.frame, "g5x_offset", 1),
+                   SetMode(span, it.frame, "xy_rotation", rotation_deg(it, 1))]
         if it.frame.plane is not Plane.XY:
             it.set_frame(replace(it.frame, plane=Plane.XY))
             resets.append(SetMode(span, it.frame, "plane", Plane.XY))

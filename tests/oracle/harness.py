@@ -1,0 +1,165 @@
+"""Differential harness: one program through LinuxCNC 2.9's ``rs274 -g`` and cncc's canon trace.
+
+:func:`rs274_path` finds the wrapper installed by ``scripts/ensure-rs274.sh`` (or ``$CNCC_RS274``).
+:func:`compare` runs both on the same text and reports the first disagreement:
+
+- traces: the calls in :data:`COMPARED` (motion, offsets, rotation, tool, feed, plane, units,
+  dwell), in order, numbers equal within :data:`TOLERANCE`;
+- errors: when rs274 stops with an error, cncc must fail too; when rs274's message is one of
+  :data:`MESSAGES`, cncc must report that diagnostic code.  When rs274 stops, only the calls
+  before its error are compared (it prints the trace up to the failing block).
+"""
+
+from __future__ import annotations
+
+import os
+import re
+import shutil
+import subprocess
+import tempfile
+from dataclasses import dataclass, field
+from pathlib import Path
+
+TOLERANCE = 1e-4
+WRAPPER_DEFAULT = Path(os.environ.get("XDG_CACHE_HOME", Path.home() / ".cache")) / "cncc" / "rs274" / "bin" / "rs274"
+
+COMPARED = frozenset({
+    "STRAIGHT_TRAVERSE", "STRAIGHT_FEED", "ARC_FEED", "STRAIGHT_PROBE", "RIGID_TAP",
+    "SET_G5X_OFFSET", "SET_G92_OFFSET", "SET_XY_ROTATION", "USE_TOOL_LENGTH_OFFSET",
+    "CHANGE_TOOL", "SELECT_TOOL", "SET_FEED_RATE", "SELECT_PLANE", "USE_LENGTH_UNITS", "DWELL",
+    "SET_FEED_MODE", "PROGRAM_END",
+})
+
+# rs274's error message (first line after "executing") -> the diagnostic code cncc reports.
+MESSAGES: dict[str, str] = {}
+
+_CALL = re.compile(r"^\s*(?:\d+\s+)?N\S*\s+([A-Z_0-9]+)\((.*)\)\s*$")
+
+
+def rs274_path() -> Path | None:
+    """The rs274 wrapper, or None when the oracle is not installed."""
+    env = os.environ.get("CNCC_RS274")
+    for cand in ([Path(env)] if env else []) + [WRAPPER_DEFAULT]:
+        if cand.is_file() and os.access(cand, os.X_OK):
+            return cand
+    found = shutil.which("rs274")
+    return Path(found) if found else None
+
+
+Call = tuple[str, tuple[str, ...]]
+
+
+def parse_trace(text: str) -> list[Call]:
+    """The compared calls of a ``-g`` canon trace (rs274's or cncc's)."""
+    calls: list[Call] = []
+    for line in text.splitlines():
+        m = _CALL.match(line)
+        if m is None or m.group(1) not in COMPARED:
+            continue
+        args = tuple(a.strip() for a in re.split(r"[,\s]+", m.group(2)) if a.strip())
+        calls.append((m.group(1), args))
+    return calls
+
+
+@dataclass(slots=True)
+class Run:
+    ok: bool
+    calls: list[Call]
+    error: str = ""  # rs274: its message; cncc: the first error's code and message
+    codes: tuple[str, ...] = ()
+
+
+def run_rs274(text: str, tool_table: str = "", *, exe: Path | None = None) -> Run:
+    exe = exe or rs274_path()
+    assert exe is not None, "rs274 is not installed (scripts/ensure-rs274.sh)"
+    with tempfile.TemporaryDirectory(prefix="cncc-oracle-") as tmp:
+        prog = Path(tmp) / "prog.ngc"
+        prog.write_text(text)
+        tbl = Path(tmp) / "tool.tbl"
+        tbl.write_text(tool_table)
+        for _ in range(3):  # rs274 now and then exits non-zero without a message: run it again
+            p = subprocess.run([str(exe), "-t", str(tbl), "-g", str(prog)], capture_output=True, text=True,
+                               timeout=30, cwd=tmp)
+            err_lines = [ln for ln in p.stderr.splitlines() if ln.strip() and ln.strip() != "executing"]
+            if p.returncode == 0 or err_lines:
+                break
+    return Run(p.returncode == 0, parse_trace(p.stdout), err_lines[0] if err_lines else "")
+
+
+def tool_table_mm(table: str) -> str:
+    """A LinuxCNC tool table in inches (the stand-alone rs274's machine units) as millimetres,
+    the unit cncc reads ``.tbl`` files in."""
+    def scale(m: re.Match[str]) -> str:
+        return f"{m.group(1)}{float(m.group(2)) * 25.4:.6f}"
+
+    rows = (re.sub(r"\b([XYZUVWDIJQ])([-+]?[\d.]+)", scale, ln.split(";")[0]) for ln in table.splitlines())
+    return "\n".join(rows) + "\n"
+
+
+def run_cncc(text: str, tool_table: str = "") -> Run:
+    from cncc.api import compile_text
+    from cncc.diagnostics import Severity
+
+    with tempfile.TemporaryDirectory(prefix="cncc-oracle-") as tmp:
+        opts: dict[str, object] = {}
+        if tool_table:
+            tbl = Path(tmp) / "tool.tbl"
+            tbl.write_text(tool_table_mm(tool_table))
+            opts["tools_file"] = str(tbl)
+        r = compile_text(text, dialect="linuxcnc", emit="canon", **opts)
+    errors = [d for d in r.sink if d.severity is Severity.ERROR]
+    first = f"{errors[0].code}: {errors[0].message}" if errors else ""
+    return Run(r.ok, parse_trace(r.output), first, tuple(d.code for d in errors))
+
+
+def _same_args(a: tuple[str, ...], b: tuple[str, ...]) -> bool:
+    if len(a) != len(b):
+        return False
+    for x, y in zip(a, b, strict=True):
+        if x == y:
+            continue
+        try:
+            if abs(float(x) - float(y)) > TOLERANCE + 1e-9:  # one unit of the 4th decimal: both round
+                return False
+        except ValueError:
+            return False
+    return True
+
+
+@dataclass(slots=True)
+class Verdict:
+    agree: bool
+    reason: str = ""
+    oracle: Run | None = None
+    cncc: Run | None = None
+    extra: dict[str, str] = field(default_factory=dict)
+
+
+def _fmt(c: Call | None) -> str:
+    return "(end)" if c is None else f"{c[0]}({', '.join(c[1])})"
+
+
+def diff_calls(want: list[Call], got: list[Call], *, prefix: bool = False) -> str:
+    """"" when equal (``prefix``: ``want`` may end before ``got``), else the first difference."""
+    n = len(want) if prefix else max(len(want), len(got))
+    for i in range(n):
+        w = want[i] if i < len(want) else None
+        g = got[i] if i < len(got) else None
+        if w is None or g is None or w[0] != g[0] or not _same_args(w[1], g[1]):
+            return f"call {i + 1}: rs274 {_fmt(w)} / cncc {_fmt(g)}"
+    return ""
+
+
+def compare(text: str, tool_table: str = "") -> Verdict:
+    want = run_rs274(text, tool_table)
+    got = run_cncc(text, tool_table)
+    if want.ok != got.ok:
+        why = f"rs274 error {want.error!r}" if not want.ok else f"cncc error {got.error!r}"
+        return Verdict(False, f"only one fails: {why}", want, got)
+    if not want.ok:
+        code = next((c for msg, c in MESSAGES.items() if want.error.startswith(msg)), None)
+        if code is not None and code not in got.codes:
+            return Verdict(False, f"rs274 {want.error!r} is {code}; cncc {got.error!r}", want, got)
+        return Verdict(True, "", want, got)
+    d = diff_calls(want.calls, got.calls)
+    return Verdict(not d, d, want, got)

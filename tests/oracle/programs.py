@@ -1,0 +1,364 @@
+"""Generated LinuxCNC programs, one generator per feature of the oracle suite.
+
+Each generator takes a seeded :class:`random.Random` and returns a :class:`Program`: the text
+and the tool table both interpreters read.  Programs are mostly valid (the geometry is built
+so that arcs close and compensated contours have room), with a share of deliberate errors
+where the feature has them; the verdict always comes from rs274, never from this file.
+"""
+
+from __future__ import annotations
+
+import math
+import random
+from collections.abc import Callable
+from dataclasses import dataclass
+
+
+@dataclass(frozen=True, slots=True)
+class Program:
+    text: str
+    tool_table: str = ""
+
+
+# In machine units, which are inches for the stand-alone rs274 (the harness scales them for cncc).
+TOOLS = "T1 P1 Z0.5 D0.25 ;\nT2 P2 Z-0.125 D0.375 ;\nT3 P3 Z1 D0.125 ;\nT4 P4 Z0 D0 ;\n"
+
+
+def num(x: float) -> str:
+    """A G-code number with at most four decimals and no exponent."""
+    s = f"{round(x, 4):.4f}".rstrip("0").rstrip(".")
+    return "0" if s in ("-0", "") else s
+
+
+def _xy(rng: random.Random, span: float = 50.0) -> tuple[float, float]:
+    return round(rng.uniform(-span, span), 3), round(rng.uniform(-span, span), 3)
+
+
+def _units(rng: random.Random) -> tuple[str, float]:
+    return ("G20", 0.04) if rng.random() < 0.3 else ("G21", 1.0)
+
+
+def _end(lines: list[str], rng: random.Random) -> str:
+    lines.append(rng.choice(["M2", "M30"]))
+    return "\n".join(lines) + "\n"
+
+
+# ---- straight moves ---------------------------------------------------------------------------
+def lines(rng: random.Random) -> Program:
+    u, k = _units(rng)
+    out = [f"{u} G90 G17", f"F{num(rng.uniform(50, 2000) * k)}"]
+    for i in range(rng.randint(3, 10)):
+        words = [rng.choice(["G0", "G1"] if i == 0 else ["G0", "G1", "", ""])]
+        if rng.random() < 0.2:
+            words.append(rng.choice(["G90", "G91"]))
+        for ax in rng.sample("XYZABC", rng.randint(1, 3)):
+            words.append(f"{ax}{num(rng.uniform(-100, 100) * (k if ax in 'XYZ' else 1))}")
+        out.append(" ".join(w for w in words if w))
+    return Program(_end(out, rng))
+
+
+# ---- arcs -------------------------------------------------------------------------------------
+_PLANES = {"G17": ("X", "Y", "Z", "I", "J"), "G18": ("Z", "X", "Y", "K", "I"), "G19": ("Y", "Z", "X", "J", "K")}
+
+
+def _arc_block(rng: random.Random, plane: str, pos: dict[str, float], k: float, *, turns: bool,
+               absolute_centre: bool, incremental: bool) -> str:
+    a, b, n, ca, cb = _PLANES[plane]
+    r = rng.uniform(1, 30) * k
+    ang0 = rng.uniform(0, 2 * math.pi)
+    centre = (pos[a] - r * math.cos(ang0), pos[b] - r * math.sin(ang0))
+    ang1 = ang0 + rng.uniform(-2 * math.pi, 2 * math.pi)
+    ea, eb = round(centre[0] + r * math.cos(ang1), 4), round(centre[1] + r * math.sin(ang1), 4)
+    words = [rng.choice(["G2", "G3"])]
+    if incremental:
+        words += [f"{a}{num(ea - pos[a])}", f"{b}{num(eb - pos[b])}"]
+    else:
+        words += [f"{a}{num(ea)}", f"{b}{num(eb)}"]
+    if absolute_centre:
+        words += [f"{ca}{num(centre[0])}", f"{cb}{num(centre[1])}"]
+    else:
+        words += [f"{ca}{num(centre[0] - pos[a])}", f"{cb}{num(centre[1] - pos[b])}"]
+    if rng.random() < 0.3:
+        dz = round(rng.uniform(-5, 5) * k, 3)
+        words.append(f"{n}{num(dz if incremental else pos[n] + dz)}")
+        pos[n] += dz
+    if turns:
+        words.append(f"P{rng.randint(1, 4)}")
+    pos[a], pos[b] = ea, eb
+    return " ".join(words)
+
+
+def _arcs(rng: random.Random, *, turns: bool) -> Program:
+    u, k = _units(rng)
+    absolute_centre = rng.random() < 0.3
+    out = [f"{u} G90 {'G90.1' if absolute_centre else 'G91.1'}", f"F{num(500 * k)}"]
+    pos = {"X": 0.0, "Y": 0.0, "Z": 0.0}
+    for _ in range(rng.randint(2, 6)):
+        plane = rng.choice(list(_PLANES))
+        incremental = rng.random() < 0.3
+        out.append(f"{plane} {'G91' if incremental else 'G90'}")
+        out.append(_arc_block(rng, plane, pos, k, turns=turns and rng.random() < 0.7,
+                              absolute_centre=absolute_centre, incremental=incremental))
+    out.append("G90")
+    return Program(_end(out, rng))
+
+
+def arcs_ijk(rng: random.Random) -> Program:
+    return _arcs(rng, turns=False)
+
+
+def helix_turns(rng: random.Random) -> Program:
+    return _arcs(rng, turns=True)
+
+
+def arcs_r(rng: random.Random) -> Program:
+    u, k = _units(rng)
+    out = [f"{u} G90 G17", f"F{num(300 * k)}"]
+    x, y = 0.0, 0.0
+    for _ in range(rng.randint(2, 6)):
+        ex, ey = _xy(rng, 40 * k)
+        chord = math.hypot(ex - x, ey - y)
+        if chord < 1e-3:
+            continue
+        r = chord / 2 * rng.choice([1.0, 1.0001, rng.uniform(1.0, 3.0), rng.uniform(1.0, 3.0)])
+        if rng.random() < 0.15:  # just short of half the chord: inside or outside the tolerance
+            r = chord / 2 - rng.choice([0.0005, 0.001, 0.002, 0.00004, 0.00006])
+        if rng.random() < 0.5:
+            r = -r
+        out.append(f"{rng.choice(['G2', 'G3'])} X{num(ex)} Y{num(ey)} R{num(r)}")
+        x, y = ex, ey
+    return Program(_end(out, rng))
+
+
+# ---- offsets ----------------------------------------------------------------------------------
+_SYSTEMS = ["G54", "G55", "G56", "G57", "G58", "G59", "G59.1", "G59.2", "G59.3"]
+
+
+def _moves(rng: random.Random, k: float, n: int) -> list[str]:
+    return [f"{rng.choice(['G0', 'G1 F300'])} X{num(rng.uniform(-50, 50) * k)} Y{num(rng.uniform(-50, 50) * k)}"
+            f" Z{num(rng.uniform(-10, 10) * k)}" for _ in range(n)]
+
+
+def work_offsets(rng: random.Random) -> Program:
+    u, k = _units(rng)
+    out = [f"{u} G90"]
+    for _ in range(rng.randint(2, 5)):
+        p = rng.randint(0, 9)
+        lw = rng.choice(["L2", "L20"])
+        axes = " ".join(f"{ax}{num(rng.uniform(-80, 80) * k)}" for ax in rng.sample("XYZA", rng.randint(1, 3)))
+        out.append(f"G10 {lw} P{p} {axes}")
+        out.append(rng.choice(_SYSTEMS))
+        out += _moves(rng, k, rng.randint(1, 2))
+    return Program(_end(out, rng))
+
+
+def rotation(rng: random.Random) -> Program:
+    u, k = _units(rng)
+    out = [f"{u} G90"]
+    for _ in range(rng.randint(1, 4)):
+        p = rng.choice([0, 1, 1, 2])
+        axes = " ".join(f"{ax}{num(rng.uniform(-30, 30) * k)}" for ax in rng.sample("XYZ", rng.randint(0, 2)))
+        out.append(f"G10 L2 P{p} {axes} R{num(rng.uniform(-180, 180))}".replace("  ", " "))
+        out.append(rng.choice(["G54", "G55", "G54"]))
+        out += _moves(rng, k, rng.randint(1, 3))
+        if rng.random() < 0.3:
+            out.append(f"G53 G0 X{num(rng.uniform(-20, 20) * k)}")
+    return Program(_end(out, rng))
+
+
+def g92_offsets(rng: random.Random) -> Program:
+    u, k = _units(rng)
+    out = [f"{u} G90", *_moves(rng, k, 1)]
+    for _ in range(rng.randint(2, 6)):
+        c = rng.choice(["G92", "G92", "G52", "G92.1", "G92.2", "G92.3"])
+        if c in ("G92", "G52"):
+            axes = " ".join(f"{ax}{num(rng.uniform(-40, 40) * k)}" for ax in rng.sample("XYZ", rng.randint(1, 3)))
+            out.append(f"{c} {axes}")
+        else:
+            out.append(c)
+        out += _moves(rng, k, rng.randint(0, 2))
+    return Program(_end(out, rng))
+
+
+def tool_length(rng: random.Random) -> Program:
+    u, k = _units(rng)
+    out = [f"{u} G90"]
+    for _ in range(rng.randint(2, 5)):
+        t = rng.randint(1, 4)
+        choice = rng.random()
+        if choice < 0.4:
+            out.append(f"T{t} M6")
+            out.append(rng.choice([f"G43 H{t}", "G43", f"G43 H{rng.randint(1, 4)}"]))
+        elif choice < 0.6:
+            out.append(f"G43.1 Z{num(rng.uniform(-20, 20) * k)}")
+        elif choice < 0.8:
+            out.append("G49")
+        else:
+            out.append(f"G43 H{t}")
+        out += _moves(rng, k, rng.randint(1, 2))
+    return Program(_end(out, rng), TOOLS)
+
+
+# ---- canned cycles ----------------------------------------------------------------------------
+def cycles(rng: random.Random) -> Program:
+    u, k = _units(rng)
+    plane = rng.choice(["G17", "G17", "G18", "G19"])
+    out = [f"{u} G90 {plane}", f"F{num(200 * k)} S1000 M3", f"G0 X0 Y0 Z{num(20 * k)}"]
+    a, b, n = {"G17": "XYZ", "G18": "ZXY", "G19": "YZX"}[plane]
+    g = rng.choice(["G81", "G82", "G83", "G73", "G84", "G85", "G86", "G88", "G89"])
+    incremental = rng.random() < 0.25
+    words = [rng.choice(["G98", "G99"]), "G91" if incremental else "G90", g]
+    if incremental:
+        words += [f"{a}{num(rng.uniform(-10, 10) * k)}", f"{b}{num(rng.uniform(-10, 10) * k)}",
+                  f"{n}{num(-rng.uniform(2, 10) * k)}", f"R{num(-rng.uniform(0, 5) * k)}"]
+    else:
+        words += [f"{a}{num(rng.uniform(-30, 30) * k)}", f"{b}{num(rng.uniform(-30, 30) * k)}",
+                  f"{n}{num(-rng.uniform(1, 10) * k)}", f"R{num(rng.uniform(1, 5) * k)}"]
+    if g in ("G82", "G86", "G88", "G89") or rng.random() < 0.2:
+        words.append(f"P{num(rng.choice([0, 0.5, 1]))}")
+    if g in ("G83", "G73"):
+        words.append(f"Q{num(rng.uniform(0.5, 3) * k)}")
+    if rng.random() < 0.3:
+        words.append(f"L{rng.randint(1, 3)}")
+    out.append(" ".join(words))
+    for _ in range(rng.randint(0, 3)):
+        out.append(f"{a}{num(rng.uniform(-30, 30) * k)} {b}{num(rng.uniform(-30, 30) * k)}")
+    out.append(rng.choice(["G80", "G0 G90 Z20", "G80 G90"]))
+    return Program(_end(out, rng), TOOLS)
+
+
+# ---- cutter compensation ----------------------------------------------------------------------
+def cutter_comp(rng: random.Random) -> Program:
+    u, k = _units(rng)
+    tool = rng.randint(1, 3)
+    out = [f"{u} G90 G17 F{num(300 * k)}", f"T{tool} M6 G43", f"G0 X{num(-40 * k)} Y{num(-40 * k)} Z{num(5 * k)}",
+           f"G1 Z{num(-1 * k)}"]
+    side = rng.choice(["G41", "G42"])
+    kind = rng.random()
+    if kind < 0.3:
+        out.append(f"{side}.1 D{num(rng.uniform(1, 8) * k)} G1 X{num(-20 * k)} Y{num(-20 * k)}")
+    elif kind < 0.5:
+        out.append(f"{side} G1 X{num(-20 * k)} Y{num(-20 * k)}")
+    else:
+        out.append(f"{side} D{tool} G1 X{num(-20 * k)} Y{num(-20 * k)}")
+    w, h = rng.uniform(15, 40) * k, rng.uniform(15, 40) * k
+    x0, y0 = -20 * k, -20 * k
+    corners = [(x0 + w, y0), (x0 + w, y0 + h), (x0, y0 + h), (x0, y0)]
+    for cx, cy in corners:
+        if rng.random() < 0.3:
+            r = rng.uniform(0.5, 1.0) * min(w, h) / 2
+            out.append(f"{'G3' if side == 'G41' else 'G2'} X{num(cx)} Y{num(cy)} R{num(max(r, math.hypot(w, h)))}")
+        else:
+            out.append(f"G1 X{num(cx)} Y{num(cy)}")
+    out.append(f"G40 G1 X{num(-40 * k)} Y{num(-40 * k)}")
+    out.append(f"G0 Z{num(5 * k)}")
+    return Program(_end(out, rng), TOOLS)
+
+
+# ---- O-words and expressions ------------------------------------------------------------------
+def _expr(rng: random.Random, depth: int = 0) -> str:
+    if depth > 2 or rng.random() < 0.4:
+        return rng.choice([num(rng.uniform(-10, 10)), "#1", "#<v>", "#<_g>", str(rng.randint(1, 9))])
+    op = rng.choice(["+", "-", "*", "/", "MOD", "**", "EQ", "LT", "GT", "AND", "OR"])
+    if rng.random() < 0.2:
+        f = rng.choice(["ABS", "SIN", "COS", "SQRT", "ROUND", "FIX", "FUP", "EXP", "ATAN"])
+        if f == "ATAN":
+            return f"ATAN[{_expr(rng, depth + 1)}]/[{_expr(rng, depth + 1)}]"
+        if f == "SQRT":
+            return f"SQRT[ABS[{_expr(rng, depth + 1)}]]"
+        if f == "EXP":
+            return f"EXP[[{_expr(rng, depth + 1)}] MOD 3]"
+        return f"{f}[{_expr(rng, depth + 1)}]"
+    rhs = _expr(rng, depth + 1)
+    if op in ("/", "MOD"):
+        rhs = f"[ABS[{rhs}] + 1]"
+    if op == "**":
+        return f"[ABS[{_expr(rng, depth + 1)}] ** {rng.randint(0, 3)}]"
+    return f"[{_expr(rng, depth + 1)} {op} {rhs}]"
+
+
+def owords(rng: random.Random) -> Program:
+    out = ["G21 G90 F500", f"#1 = {num(rng.uniform(-5, 5))}", f"#<_g> = {num(rng.uniform(-5, 5))}",
+           f"#<v> = {num(rng.uniform(-5, 5))}"]
+    body: list[str] = []
+    kind = rng.choice(["if", "while", "repeat", "call", "do", "expr"])
+    if kind == "if":
+        body += [f"o100 if [{_expr(rng)} GT {_expr(rng)}]", f"G1 X[{_expr(rng)}]"]
+        if rng.random() < 0.5:
+            body += [f"o100 elseif [{_expr(rng)} LT 0]", f"G1 Y[{_expr(rng)}]"]
+        if rng.random() < 0.5:
+            body += ["o100 else", f"G1 Z[{_expr(rng)}]"]
+        body.append("o100 endif")
+    elif kind == "while":
+        n = rng.randint(0, 5)
+        body += ["#<i> = 0", f"o101 while [#<i> LT {n}]", f"G1 X[#<i> * {_expr(rng)}]"]
+        if rng.random() < 0.3:
+            body += [f"o102 if [#<i> EQ {rng.randint(0, 4)}]", "o101 break", "o102 endif"]
+        body += ["#<i> = [#<i> + 1]", "o101 endwhile"]
+    elif kind == "do":
+        body += ["#<i> = 0", "o103 do", f"G1 Y[#<i> + {_expr(rng)}]", "#<i> = [#<i> + 1]",
+                 f"o103 while [#<i> LT {rng.randint(0, 4)}]"]
+    elif kind == "repeat":
+        body += [f"o104 repeat [{rng.randint(0, 4)}]", f"G91 G1 X{num(rng.uniform(-5, 5))}", "G90", "o104 endrepeat"]
+    elif kind == "call":
+        out[1:1] = ["o200 sub", "#<a> = [#1 * 2]", f"G1 X[#<a>] Y[#2 + {_expr(rng)}]", "o200 endsub"]
+        body += [f"o200 call [{_expr(rng)}] [{_expr(rng)}]"]
+        if rng.random() < 0.5:
+            out[1:1] = ["o201 sub", "o201 return [#1 + 1]", "o201 endsub"]
+            body += [f"o201 call [{_expr(rng)}]", "G1 Z[#<_value>]"]
+    else:
+        body += [f"G1 X[{_expr(rng)}] Y[{_expr(rng)}]", f"#2 = {_expr(rng)}", "G1 Z#2"]
+    out += body
+    return Program(_end(out, rng))
+
+
+# ---- path modes and feeds ---------------------------------------------------------------------
+def path_feed(rng: random.Random) -> Program:
+    u, k = _units(rng)
+    out = [f"{u} G90 G17"]
+    for _ in range(rng.randint(2, 6)):
+        c = rng.random()
+        if c < 0.25:
+            out.append(rng.choice(["G61", "G61.1", "G64", f"G64 P{num(rng.uniform(0, 1) * k)}",
+                                   f"G64 P{num(rng.uniform(0, 1) * k)} Q{num(rng.uniform(0, 1) * k)}"]))
+        elif c < 0.5:
+            out.append(f"G93 G1 X{num(rng.uniform(-50, 50) * k)} Y{num(rng.uniform(-50, 50) * k)} "
+                       f"F{num(rng.uniform(0.5, 20))}")
+            out.append("G94 F" + num(rng.uniform(100, 900) * k))
+        else:
+            out.append(f"G1 X{num(rng.uniform(-50, 50) * k)} F{num(rng.uniform(10, 900) * k)}")
+    return Program(_end(out, rng))
+
+
+# ---- rs274ngc syntax (issue 24's syntax items) ---------------------------------------------------
+def syntax(rng: random.Random) -> Program:
+    a, b = rng.randint(-9, 9) or 1, rng.randint(-9, 9) or 2
+    x = num(rng.uniform(-20, 20))
+    pieces = [
+        f"#1 = [{a} MOD {b}]\nG1 X#1",
+        f"G1 X {rng.choice(['SQRT', 'ABS', 'ROUND', 'FIX'])}[{abs(a) * abs(b)}]",
+        f"#<p> = {x}\nG1 Y EXISTS[#<p>] Z EXISTS[#<q>]",
+        f"#<k> = {rng.randint(5, 30)}\n#{rng.randint(5, 30)} = {x}\nG1 X##<k>",
+        f"#<s> = {a}\no110 if [#<s> GT 0]\nG1 X1\no110 else if [#<s> LT -3]\nG1 X2\no110 else\nG1 X3\no110 end if",
+        f"o120 sub\nG1 X#1 Y#2\no120 end sub\no120 call [{a}] (between) [{b}]",
+        f"{rng.choice(['G0 G80', 'G80 G0', 'G1 G80'])} X{x}",
+        f"#2 = {a} {rng.choice(['*', '+', '/'])} {b}",
+        "o130 sub\no131 sub\no131 endsub\no130 endsub",
+        f"#3 = {rng.choice(['-', ''])}[{a} ** 2]\nG1 Z#3",
+    ]
+    out = ["G21 G90 F500"]
+    out += rng.sample(pieces, rng.randint(1, 3))
+    return Program(_end(out, rng))
+
+
+FEATURES: dict[str, Callable[[random.Random], Program]] = {
+    "lines": lines, "arcs_ijk": arcs_ijk, "arcs_r": arcs_r, "helix_turns": helix_turns,
+    "work_offsets": work_offsets, "rotation": rotation, "g92_g52": g92_offsets, "tool_length": tool_length,
+    "cycles": cycles, "cutter_comp": cutter_comp, "owords": owords, "path_feed": path_feed, "syntax": syntax,
+}
+
+
+def generate(feature: str, count: int, seed: int = 0) -> list[Program]:
+    """``count`` programs of ``feature``, the same ones for the same seed."""
+    gen = FEATURES[feature]
+    return [gen(random.Random(f"{feature}:{seed}:{i}")) for i in range(count)]
