@@ -439,19 +439,37 @@ class GcodeEmitter:
         if f.work_index != tf.work_index and f.work_index in self.t.work:
             out.append(self.block([self.t.work[f.work_index].name]))
             tf.adopt_work(f)
-        if f.local_offset_mm != tf.local_mm and self.t.has("local_offset"):
-            out.append(self.block([self.t.code("local_offset"), *self._vector_words(f.local_offset_mm)]))
-            tf.local_mm = f.local_offset_mm
+        g92 = self.t.code("set_origin") or self.t.code("set_origin_rs274")  # LinuxCNC's G92 presets alike
+        g92_want = sub(f.g92_offset_mm, tf.g92_in_local_mm)  # what the target's G92 must hold
+        if g92_want != tf.g92_mm and not self.g92_force and self.t.has("local_offset"):
+            # A G92 *offset* change (LinuxCNC G52/G92.x, a cancel) of an axis whose position the output does
+            # not know (or whose offset is already held there): the target's G92 would set it from wherever
+            # the machine is, so the change goes into the target's local offset (G52), which moves the
+            # origin by the same amount from any start.
+            delta = sub(g92_want, tf.g92_mm)
+            if any(abs(delta[i]) > 1e-12 and (i in self.unknown or tf.g92_in_local_mm[i]) for i in range(6)):
+                tf.g92_in_local_mm = add(tf.g92_in_local_mm, delta)
+                g92_want = tf.g92_mm
+        elif g92_want != tf.g92_mm and not self.g92_force and any(
+                abs(g92_want[i] - tf.g92_mm[i]) > 1e-12 and i in self.unknown for i in range(6)):
+            # no local offset in the target: leave its G92 as it is and let the fold add the change to the
+            # coordinates (the G92 is written once the axis has a known position)
+            self.warn(dg.XL_FOLDED, f"{self.t.name} output: a G92 offset change of an axis with no known position "
+                                    "is added to the coordinates")
+            g92_want = tf.g92_mm
+        local_want = add(f.local_offset_mm, tf.g92_in_local_mm)
+        if local_want != tf.local_mm and self.t.has("local_offset"):
+            out.append(self.block([self.t.code("local_offset"), *self._vector_words(local_want)]))
+            tf.local_mm = local_want
         if (f.tool_length_mm, f.tool_length_index) != (tf.tool_mm, tf.tool_index):
             out += self._tool_length(f)
-        g92 = self.t.code("set_origin") or self.t.code("set_origin_rs274")  # LinuxCNC's G92 presets alike
-        if (f.g92_offset_mm != tf.g92_mm or self.g92_force) and g92:
+        if (g92_want != tf.g92_mm or self.g92_force) and g92:
             machine = add(start, add(f.total_offset_mm, _tool(f)))
             old = tf.g92_mm
-            tf.g92_mm = f.g92_offset_mm
+            tf.g92_mm = g92_want
             here = sub(machine, tf.offset())
             words = [f"{AXES[i]}{self.text(self.counts(here[i], i), i)}" for i in range(6)
-                     if abs(f.g92_offset_mm[i] - old[i]) > 1e-12 or i in self.g92_force]
+                     if abs(g92_want[i] - old[i]) > 1e-12 or i in self.g92_force]
             self.unknown -= self.g92_force  # a preset gives the axis a program position where it is
             self.g92_force = set()
             out.append(self.block([g92, *words]))

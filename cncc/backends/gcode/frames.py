@@ -49,6 +49,7 @@ class TargetFrame:
     work_mm: Vec6 | None = None  # None until the first frame is seen (the table value of G54)
     local_mm: Vec6 = ZERO
     g92_mm: Vec6 = ZERO
+    g92_in_local_mm: Vec6 = ZERO  # the part of the source's G92 offset the target holds in its local offset (G52)
     tool_mm: float = 0.0
     tool_index: int = 0
     tool_axis: int = 2
