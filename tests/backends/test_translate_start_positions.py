@@ -113,7 +113,8 @@ def test_linuxcnc_g52_of_an_unpositioned_axis_moves_alike_from_any_start() -> No
     """Found by the property above once G52 became LinuxCNC's G92 offset: Y has no position yet when
     ``G52 Y5.`` runs, so a target ``G92 Y-5.`` would set the origin from wherever the machine is.  The
     offset change must be written position-independently (the target's G52) and still cancel."""
-    text = "G21 G90 G17 G94\nG00 X0\nG01 X0 F300.\nG52 X0 Y5.\nG00 X0 Y0\nG01 X0 F350.\nG52 X0 Y0 Z0\nG01 X0 F500.\nM2\n"
+    text = ("G21 G90 G17 G94\nG00 X0\nG01 X0 F300.\nG52 X0 Y5.\nG00 X0 Y0\nG01 X0 F350.\nG52 X0 Y0 Z0\n"
+            "G01 X0 F500.\nM2\n")
     for target in TARGETS:
         out = translate(text, "linuxcnc", target)
         for start in STARTS:
