@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import functools
 import re
+import threading
 from collections.abc import Iterator
 from dataclasses import dataclass
 from importlib import resources
@@ -58,8 +59,13 @@ def grammar_text(family: str, comments: tuple[str, ...], block_end: str) -> str:
     return "\n".join(out) + "\n"
 
 
-class _Builder(SzghBuilder, LinuxcncBuilder, Series8Builder, Transformer[Token, Any]):
-    """Builds syntax nodes with absolute offsets (``base`` is the line's offset)."""
+class _Builder(SzghBuilder, LinuxcncBuilder, Series8Builder, Transformer[Token, Any], threading.local):
+    """Builds syntax nodes with absolute offsets (``base`` is the line's offset).
+
+    One builder is cached with its lark parser, so its per-line state (``base``,
+    ``bad_numbers``) is thread-local: the language server parses in several threads at
+    once (tests/frontend/test_parser_threads.py).
+    """
 
     def __init__(self) -> None:
         super().__init__()
@@ -300,7 +306,8 @@ class Parser:
     def _lark_blocks(self, src: SourceFile, line: str, base: int, line_no: int) -> Iterator[sx.Block]:
         parser, builder = _lark(self._family, self._comments, self._block_end)
         builder.base = base
-        builder.bad_numbers = []
+        bad_numbers: list[tuple[int, int, str]] = []
+        builder.bad_numbers = bad_numbers  # read back before the first yield (generators interleave)
         stripped = line.rstrip("\r")
         trailing: sx.CommentItem | None = None
         try:
@@ -314,7 +321,7 @@ class Parser:
         except LarkError as exc:  # pragma: no cover - defensive: grammar bugs
             self.sink.emit(dg.SYNTAX, Span(src.source_id, base, base + 1), f"cannot parse block: {exc}")
             return
-        for start, end, text in builder.bad_numbers:
+        for start, end, text in bad_numbers:
             if self.options.strict or not self.dialect.option("lenient_numbers", True):
                 self.sink.emit(dg.BAD_NUMBER, Span(src.source_id, start, end), f"malformed number '{text}'")
             else:
