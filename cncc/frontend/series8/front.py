@@ -27,6 +27,7 @@ from cncc.frontend.series8 import cycles as _cycles  # noqa: F401  (registers G8
 from cncc.frontend.series8 import lathe, state
 from cncc.frontend.series8 import patterns as _patterns  # noqa: F401  (registers G49/G50)
 from cncc.frontend.series8.corners import Stream
+from cncc.frontend.series8.layer import handler_table
 from cncc.frontend.syntax import Block
 from cncc.ir import Arc, Command, Linear, Rapid, Units
 from cncc.source import SourceFile, Span
@@ -34,7 +35,7 @@ from cncc.source import SourceFile, Span
 
 def lower_series8(src: SourceFile, dialect: Dialect, sink: DiagnosticSink, options: InterpOptions) -> Iterator[Command]:
     parser = Parser(dialect, sink, ParseOptions(strict=options.strict))
-    it = Interpreter(dialect, sink, src.source_id, options)
+    it = Interpreter(dialect, sink, src.source_id, options, table=handler_table())
     st = state.attach(it)
     st.x_diameter = bool(dialect.option("lathe_diameter_x", True)) and lathe.is_lathe_program(src.text)
     it.modal = it.modal.with_(cycle_return_initial=False)  # every SERIES 8 cycle returns to R
