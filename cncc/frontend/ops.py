@@ -424,7 +424,7 @@ def _length(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
 def _work(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     off = it.options.work_offsets_mm.get(c.index, (0.0,) * 6)
     if c.index != it.frame.work_index or off != it.frame.work_offset_mm:
-        it.set_frame(replace(it.frame, work_index=c.index, work_offset_mm=off))  # type: ignore[arg-type]
+        it.set_frame(replace(it.frame, work_index=c.index, work_offset_mm=off))
         ctx.out.append(SetMode(ctx.span, it.frame, "g5x_offset", c.index))
 
 
