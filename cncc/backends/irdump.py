@@ -29,7 +29,7 @@ def dump_ir(cmds: Iterable[Command], sources: SourceMap) -> Iterator[str]:
         if src is not None:
             text = src.line_text(src.position(c.span.start).line).strip()
         parts = []
-        for f in fields(c):  # type: ignore[arg-type]
+        for f in fields(c):
             if f.name in _SKIP:
                 continue
             val = getattr(c, f.name)

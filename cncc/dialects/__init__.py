@@ -10,9 +10,12 @@ from __future__ import annotations
 
 import functools
 import tomllib
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from importlib import resources
-from typing import Any
+from typing import Any, TypeVar
+
+_T = TypeVar("_T")
 
 
 class DialectError(ValueError):
@@ -70,6 +73,18 @@ class Dialect:
     # What the controller rejects, with its reason: keys are codes ("G41", "M98") or
     # address letters ("Q", "#"); values the controller's own reason (LSP, translator).
     unsupported: dict[str, str] = field(default_factory=dict)
+    # Tables derived from this dialect's data (compiled regexes ...), built on first use by
+    # :meth:`derived`.  They live on the object, never in a module-level cache keyed by
+    # ``name``: a user dialect file may share a built-in dialect's name (decisions 2026-12-01).
+    _derived: dict[str, Any] = field(default_factory=dict, init=False, compare=False, repr=False)
+
+    def derived(self, key: str, build: Callable[[Dialect], _T]) -> _T:
+        """The table ``key`` of this dialect, built once by ``build(self)``."""
+        try:
+            return self._derived[key]  # type: ignore[no-any-return]
+        except KeyError:
+            value = self._derived[key] = build(self)
+            return value
 
     def code(self, letter: str, tenths: int) -> CodeDef | None:
         return self.codes.get((letter, tenths))
@@ -89,7 +104,8 @@ class Dialect:
             if key not in self.options:
                 raise DialectError(f"dialect {self.name!r} has no option {key!r}")
         opts = {**self.options, **overrides}
-        return Dialect(**{**{f: getattr(self, f) for f in self.__dataclass_fields__}, "options": opts})
+        fields = {f: getattr(self, f) for f, d in self.__dataclass_fields__.items() if d.init}
+        return Dialect(**{**fields, "options": opts})
 
 
 def available() -> list[str]:

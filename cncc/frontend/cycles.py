@@ -336,7 +336,7 @@ def _pitch(it: Interpreter, ctx: BlockContext, d: CycleData, feed: float, spindl
 def _shift(it: Interpreter, ctx: BlockContext, d: CycleData) -> Vec6 | None:
     """The G76/G87 shift vector (|Q| along the parameter's direction); None after an error."""
     if d.kind not in _SHIFTS or not d.q_mm:
-        return (0.0,) * 6  # type: ignore[return-value]
+        return (0.0,) * 6
     direction = int(option(it, "cycle_shift_direction", 0))  # type: ignore[call-overload]
     reverse = bool(option(it, "cycle_fine_bore_shift_reverse", False))
     if d.kind is CycleKind.BACK_BORE:

@@ -44,23 +44,22 @@ _MOTION_OF = {"0": "rapid", "1": "linear", "2": "arc_cw", "3": "arc_ccw"}
 _CODE_OF = {"rapid": "G00", "linear": "G01", "arc_cw": "G02", "arc_ccw": "G03"}
 _KEYWORDS = ("GOTO", "WHILE", "IF", "THEN", "WAT", "OUT", "FILE", "MSG", "STAF", "PP", "SUB", "CALL", "REPEAT",
              "ELSE", "BREAK", "CONTINUE")
-_CONTROL_PATTERNS: dict[str, re.Pattern[str]] = {}
 
 
 def _control_codes(dialect: Dialect) -> re.Pattern[str]:
     """Codes that call, return or jump (M98, M99, G65, G66 ...), on upper-case text."""
-    pat = _CONTROL_PATTERNS.get(dialect.name)
-    if pat is None:
-        from cncc.frontend.macro.executor import EXEC_OPS
+    return dialect.derived("fastpath.control_codes", _build_control_codes)
 
-        alts = [r"M[ \t]*0*[12]8\d\d(?![\d.])"]
-        for c in dialect.codes.values():
-            if c.op in EXEC_OPS:
-                whole, frac = divmod(c.tenths, 10)
-                alts.append(f"{c.letter}[ \t]*0*{whole}" + (rf"\.{frac}" if frac else r"(?![\d.])"))
-        pat = re.compile("|".join(alts))
-        _CONTROL_PATTERNS[dialect.name] = pat
-    return pat
+
+def _build_control_codes(dialect: Dialect) -> re.Pattern[str]:
+    from cncc.frontend.macro.executor import EXEC_OPS
+
+    alts = [r"M[ \t]*0*[12]8\d\d(?![\d.])"]
+    for c in dialect.codes.values():
+        if c.op in EXEC_OPS:
+            whole, frac = divmod(c.tenths, 10)
+            alts.append(f"{c.letter}[ \t]*0*{whole}" + (rf"\.{frac}" if frac else r"(?![\d.])"))
+    return re.compile("|".join(alts))
 
 
 @dataclass(slots=True)

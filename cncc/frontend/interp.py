@@ -17,6 +17,7 @@ from __future__ import annotations
 
 from collections.abc import Iterable, Iterator
 from dataclasses import dataclass, field, replace
+from typing import TYPE_CHECKING
 
 from cncc import diagnostics as dg
 from cncc.diagnostics import DiagnosticSink
@@ -37,6 +38,9 @@ from cncc.ir import (
 )
 from cncc.ir.frame import ALL_HELD, LINEAR_HELD, NOT_HELD
 from cncc.source import Span
+
+if TYPE_CHECKING:
+    from cncc.frontend.ops import HandlerTable
 
 # Execution order of the ops within one block (lower runs first).
 ORDER: dict[str, int] = {
@@ -97,14 +101,15 @@ class Interpreter:
     """Lowers blocks of one dialect to IR commands, keeping modal state."""
 
     def __init__(self, dialect: Dialect, sink: DiagnosticSink, source_id: int = 0,
-                 options: InterpOptions | None = None) -> None:
+                 options: InterpOptions | None = None, table: HandlerTable | None = None) -> None:
         from cncc.frontend import ops  # the handler table
 
         self.dialect = dialect
         self.sink = sink
         self.source_id = source_id
         self.options = options or InterpOptions()
-        self.handlers = ops.HANDLERS
+        self.table = table or ops.core_table()  # a dialect layer passes its own composed table
+        self.handlers = self.table.handlers
         units = Units.INCH if dialect.default_units == "inch" else Units.MM
         self.reader = WordReader.for_dialect(dialect, units)
         self.modal = ModalState()
@@ -284,7 +289,8 @@ class Interpreter:
             codes.remove(groups["cycle"])
         if not ok:
             return None
-        codes.sort(key=lambda c: ORDER.get(c.op, DEFAULT_ORDER))
+        order = self.table.order
+        codes.sort(key=lambda c: order.get(c.op, DEFAULT_ORDER))
         return BlockContext(block, span, words, codes, out)
 
     def _lookup(self, w: Word) -> CodeDef | None:

@@ -8,8 +8,10 @@ function that lowers the block's end point.  Later features register more entrie
 
 from __future__ import annotations
 
-from collections.abc import Callable
-from dataclasses import replace
+import functools
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass, replace
+from types import MappingProxyType
 from typing import TYPE_CHECKING
 
 from cncc import diagnostics as dg
@@ -44,8 +46,9 @@ if TYPE_CHECKING:
 
 Handler = Callable[["Interpreter", "BlockContext", CodeDef], None]
 MotionHandler = Callable[["Interpreter", "BlockContext", Vec6], None]
+BlockHook = Callable[["Interpreter", "BlockContext"], None]
 HANDLERS: dict[str, Handler] = {}
-BLOCK_HOOKS: list[Callable[[Interpreter, BlockContext], None]] = []  # words without a code (H, D ...)
+BLOCK_HOOKS: list[BlockHook] = []  # words without a code (H, D ...)
 MOTIONS: dict[str, MotionHandler] = {}
 AXES = "XYZABC"
 
@@ -59,21 +62,82 @@ def handler(*ops: str) -> Callable[[Handler], Handler]:
     return deco
 
 
+# ---- handler tables per dialect ---------------------------------------------------
+@dataclass(frozen=True, slots=True)
+class HandlerTable:
+    """What one interpreter dispatches through: op handlers, motion handlers, block
+    hooks and the in-block order of ops.  :func:`core_table` is the shared one (the
+    modules above register into it when imported); a dialect layer composes its own
+    copy (:meth:`Layer.compose`) instead of changing the shared one."""
+
+    handlers: Mapping[str, Handler]
+    motions: Mapping[str, MotionHandler]
+    block_hooks: Sequence[BlockHook]
+    order: Mapping[str, int]
+
+
+@functools.cache
+def core_table() -> HandlerTable:
+    """Read-only views of the shared tables (complete once this module is imported)."""
+    from cncc.frontend.interp import ORDER
+
+    return HandlerTable(MappingProxyType(HANDLERS), MappingProxyType(MOTIONS), BLOCK_HOOKS, MappingProxyType(ORDER))
+
+
+class Layer:
+    """A dialect's own handlers, wrappers, hooks and op order over a base table.
+
+    Registering records a step; :meth:`compose` replays the steps on copies of the base
+    table, so the base table and every other dialect's interpreters are untouched."""
+
+    def __init__(self) -> None:
+        self._steps: list[Callable[[dict[str, Handler], dict[str, MotionHandler], list[BlockHook],
+                                    dict[str, int]], None]] = []
+
+    def handler(self, *ops: str) -> Callable[[Handler], Handler]:
+        def deco(fn: Handler) -> Handler:
+            self._steps.append(lambda h, m, b, o: h.update(dict.fromkeys(ops, fn)))
+            return fn
+
+        return deco
+
+    def wrap_handler(self, op: str, wrap: Callable[[Handler], Handler]) -> None:
+        self._steps.append(lambda h, m, b, o: h.__setitem__(op, wrap(h[op])))
+
+    def wrap_motion(self, mode: str, wrap: Callable[[MotionHandler], MotionHandler]) -> None:
+        self._steps.append(lambda h, m, b, o: m.__setitem__(mode, wrap(m[mode])))
+
+    def hook_first(self, hook: BlockHook) -> None:
+        self._steps.append(lambda h, m, b, o: b.insert(0, hook))
+
+    def set_order(self, op: str, rank: int) -> None:
+        self._steps.append(lambda h, m, b, o: o.__setitem__(op, rank))
+
+    def compose(self, base: HandlerTable) -> HandlerTable:
+        handlers, motions = dict(base.handlers), dict(base.motions)
+        hooks, order = list(base.block_hooks), dict(base.order)
+        for step in self._steps:
+            step(handlers, motions, hooks, order)
+        return HandlerTable(MappingProxyType(handlers), MappingProxyType(motions), tuple(hooks),
+                            MappingProxyType(order))
+
+
 # ---- block driver -----------------------------------------------------------------
 _M_ORDER = {"tool_change": 0, "spindle_cw": 1, "spindle_ccw": 1, "spindle_off": 1, "spindle_orient": 1,
             "coolant_flood": 2, "coolant_mist": 2, "coolant_off": 2, "coolant_mist_off": 2}
 
 
 def run_block(it: Interpreter, ctx: BlockContext) -> None:
-    from cncc.frontend.interp import DEFAULT_ORDER, ORDER
+    from cncc.frontend.interp import DEFAULT_ORDER
 
+    order = it.table.order
     gs = [c for c in ctx.codes if c.letter == "G"]
     ms = [c for c in ctx.codes if c.letter == "M"]
-    early = [c for c in gs if ORDER.get(c.op, DEFAULT_ORDER) < 20]
+    early = [c for c in gs if order.get(c.op, DEFAULT_ORDER) < 20]
     for c in early:
         _dispatch(it, ctx, c)
     _feed_speed_tool(it, ctx)
-    for hook in BLOCK_HOOKS:
+    for hook in it.table.block_hooks:
         hook(it, ctx)
     for c in sorted((m for m in ms if m.op in _M_ORDER), key=lambda m: _M_ORDER[m.op]):
         _dispatch(it, ctx, c)
@@ -109,7 +173,7 @@ def _full_circle(it: Interpreter, ctx: BlockContext) -> bool:
 
 
 def _dispatch(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
-    fn = HANDLERS.get(c.op)
+    fn = it.table.handlers.get(c.op)
     if fn is None:
         it.emit_error(dg.NOT_SUPPORTED, ctx.span, f"{c.name} ({c.summary.rstrip('.')}) is not supported yet")
         if c.group not in ("non_modal",) and c.letter == "G":
@@ -192,13 +256,13 @@ def _release_named(it: Interpreter, ctx: BlockContext, cycle: bool) -> None:
 def _motion(it: Interpreter, ctx: BlockContext) -> None:
     _release_named(it, ctx, bool(it.modal.cycle))
     if it.modal.cycle:
-        fn = MOTIONS.get("cycle")
+        fn = it.table.motions.get("cycle")
         if fn is None:
             it.emit_error(dg.NOT_SUPPORTED, ctx.span, "canned cycles are not supported yet")
             return
         fn(it, ctx, target(it, ctx))
         return
-    fn = MOTIONS.get(it.modal.motion)
+    fn = it.table.motions.get(it.modal.motion)
     if fn is None:
         it.emit_error(dg.NOT_SUPPORTED, ctx.span, f"motion mode {it.modal.motion} is not supported yet")
         return
@@ -430,7 +494,7 @@ def _length(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
 def _work(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     off = it.options.work_offsets_mm.get(c.index, (0.0,) * 6)
     if c.index != it.frame.work_index or off != it.frame.work_offset_mm:
-        it.set_frame(replace(it.frame, work_index=c.index, work_offset_mm=off))  # type: ignore[arg-type]
+        it.set_frame(replace(it.frame, work_index=c.index, work_offset_mm=off))
         ctx.out.append(SetMode(ctx.span, it.frame, "g5x_offset", c.index))
 
 

@@ -11,10 +11,11 @@ from __future__ import annotations
 
 import functools
 import re
-from collections.abc import Iterator
+import threading
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 from importlib import resources
-from typing import Any, cast
+from typing import Any, ParamSpec, TypeVar, cast
 
 from lark import Lark, Token, Transformer
 from lark.exceptions import LarkError, UnexpectedCharacters, UnexpectedEOF, UnexpectedInput
@@ -29,6 +30,8 @@ from cncc.frontend.series8.builder import Series8Builder
 from cncc.frontend.szgh_builder import SzghBuilder
 from cncc.source import SourceFile, Span
 
+_P = ParamSpec("_P")
+_T = TypeVar("_T")
 MAX_LINE_CHARS = 100_000
 """Lines longer than this are rejected (a 10 MB line is not a G-code block)."""
 
@@ -88,7 +91,11 @@ def grammar_text(family: str, comments: tuple[str, ...], block_end: str,
 
 
 class _Builder(SzghBuilder, LinuxcncBuilder, Series8Builder, Transformer[Token, Any]):
-    """Builds syntax nodes with absolute offsets (``base`` is the line's offset)."""
+    """Builds syntax nodes with absolute offsets (``base`` is the line's offset).
+
+    The builder is embedded in its lark parser and holds per-line state (``base``,
+    ``bad_numbers``), so :func:`_lark` caches one pair per thread.
+    """
 
     def __init__(self, full_words: dict[str, str] | None = None) -> None:
         super().__init__()
@@ -221,7 +228,32 @@ def _end(node: Any) -> int:
     return int(node.end)
 
 
-@functools.cache
+def _per_thread(build: Callable[_P, _T]) -> Callable[_P, _T]:
+    """:func:`functools.cache` with one cache per thread.
+
+    The language server parses in several threads at once; a parser shared between
+    threads mixed their line offsets (tests/frontend/test_parser_threads.py).  Building a
+    parser costs ~35 ms once per thread; a thread-local builder attribute instead cost
+    5-15 % on every grammar-path line.
+    """
+    local = threading.local()
+
+    @functools.wraps(build)
+    def cached(*args: _P.args, **kwargs: _P.kwargs) -> _T:
+        cache: dict[Any, _T] | None = getattr(local, "cache", None)
+        if cache is None:
+            cache = local.cache = {}
+        key = (args, tuple(sorted(kwargs.items())))
+        try:
+            return cache[key]
+        except KeyError:
+            value = cache[key] = build(*args, **kwargs)
+            return value
+
+    return cached
+
+
+@_per_thread
 def _lark(family: str, comments: tuple[str, ...], block_end: str,
           abbreviated: tuple[tuple[str, str], ...] = ()) -> tuple[Lark, _Builder]:
     builder = _Builder({short: word for word, short in abbreviated})
@@ -366,7 +398,8 @@ class Parser:
     def _lark_blocks(self, src: SourceFile, line: str, base: int, line_no: int) -> Iterator[sx.Block]:
         parser, builder = _lark(self._family, self._comments, self._block_end, self._abbreviated)
         builder.base = base
-        builder.bad_numbers = []
+        bad_numbers: list[tuple[int, int, str]] = []
+        builder.bad_numbers = bad_numbers  # read back before the first yield (generators interleave)
         stripped = line.rstrip("\r")
         trailing: sx.CommentItem | None = None
         try:
@@ -380,7 +413,7 @@ class Parser:
         except LarkError as exc:  # pragma: no cover - defensive: grammar bugs
             self.sink.emit(dg.SYNTAX, Span(src.source_id, base, base + 1), f"cannot parse block: {exc}")
             return
-        for start, end, text in builder.bad_numbers:
+        for start, end, text in bad_numbers:
             if self.options.strict or not self.dialect.option("lenient_numbers", True):
                 self.sink.emit(dg.BAD_NUMBER, Span(src.source_id, start, end), f"malformed number '{text}'")
             else:

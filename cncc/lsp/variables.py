@@ -11,12 +11,16 @@ so.
 
 from __future__ import annotations
 
-import math
 import re
-from collections.abc import Callable
 
 from cncc.diagnostics import DiagnosticSink
 from cncc.dialects import Dialect
+from cncc.frontend.linuxcnc.evaluate import EvalError, Parameters
+from cncc.frontend.linuxcnc.evaluate import Evaluator as LinuxcncEvaluator
+from cncc.frontend.macro.evaluate import Evaluator as MacroEvaluator
+from cncc.frontend.macro.executor import layout_for
+from cncc.frontend.macro.values import MacroError, Value, Variables
+from cncc.frontend.syntax import Assign, BinOp, Call, Neg, Num, Var
 from cncc.lsp.positions import LineIndex
 from cncc.lsp.trace import Seen, VariableTrace
 from cncc.source import SourceFile
@@ -24,19 +28,6 @@ from cncc.source import SourceFile
 _ASSIGN_RE = re.compile(r"#\s*\d+\s*=")
 _FLOW_RE = re.compile(r"\b(GOTO|WHILE|IF)\b|M\s*98|G\s*6[56]\b", re.IGNORECASE)
 MAX_LINES = 50_000
-_FUNCS: dict[str, Callable[[float], float]] = {
-    "SIN": lambda a: math.sin(math.radians(a)), "COS": lambda a: math.cos(math.radians(a)),
-    "TAN": lambda a: math.tan(math.radians(a)), "ASIN": lambda a: math.degrees(math.asin(a)),
-    "ACOS": lambda a: math.degrees(math.acos(a)), "ATAN": lambda a: math.degrees(math.atan(a)),
-    "SQRT": math.sqrt, "ABS": abs, "ROUND": lambda a: float(round(a)), "FIX": lambda a: float(math.floor(a)),
-    "FUP": lambda a: float(math.ceil(a)), "LN": math.log, "EXP": math.exp,
-}
-_BINOPS: dict[str, Callable[[float, float], float]] = {
-    "+": lambda a, b: a + b, "-": lambda a, b: a - b, "*": lambda a, b: a * b, "/": lambda a, b: a / b,
-    "MOD": lambda a, b: math.fmod(a, b), "EQ": lambda a, b: float(a == b), "NE": lambda a, b: float(a != b),
-    "GT": lambda a, b: float(a > b), "GE": lambda a, b: float(a >= b), "LT": lambda a, b: float(a < b),
-    "LE": lambda a, b: float(a <= b),
-}
 
 
 def hover_variable(text: str, index: LineIndex, dialect: Dialect, number: int, site: int,
@@ -70,13 +61,13 @@ def traced_text(number: int | str, seen: Seen) -> str:
 def variable_value(text: str, index: LineIndex, dialect: Dialect, number: int, offset: int) -> str:
     """Markdown for variable ``#number`` as seen at ``offset``."""
     from cncc.frontend.parser import Parser
-    from cncc.frontend.syntax import Assign
 
     upto = index.line_of(offset)
     values: dict[int, float] = {}
     last_line = -1
     flow = False
     parser = Parser(dialect, DiagnosticSink(max_count=10))
+    evaluate = _Eval(dialect, values)
     for line in range(max(0, upto - MAX_LINES), upto):
         body = index.line_text(line)
         if _FLOW_RE.search(body):
@@ -86,10 +77,10 @@ def variable_value(text: str, index: LineIndex, dialect: Dialect, number: int, o
         for block in parser.blocks(SourceFile(0, "", body)):
             for st in block.statements:
                 if isinstance(st, Assign) and st.target.index is not None and not st.target.name:
-                    target = _eval(st.target.index, values)
+                    target = evaluate(st.target.index)
                     if target is None:
                         continue
-                    value = _eval(st.expr, values)
+                    value = evaluate(st.expr)
                     key = int(target)
                     if value is None:
                         values.pop(key, None)
@@ -105,31 +96,59 @@ def variable_value(text: str, index: LineIndex, dialect: Dialect, number: int, o
     return f"**#{number}** = {values[number]:g}{note}\n\nset at line {last_line + 1}"
 
 
-def _eval(expr: object, values: dict[int, float]) -> float | None:
-    from cncc.frontend import syntax as sx
+class _Unknown(Exception):
+    """A variable with no assignment above the point: the value is not known statically."""
 
-    try:
-        match expr:
-            case sx.Num():
-                return expr.value
-            case sx.Var():
-                if expr.index is None:
-                    return None
-                idx = _eval(expr.index, values)
-                return values.get(int(idx)) if idx is not None else None
-            case sx.Neg():
-                v = _eval(expr.operand, values)
-                return -v if v is not None else None
-            case sx.BinOp():
-                a, b = _eval(expr.left, values), _eval(expr.right, values)
-                fn = _BINOPS.get(expr.op)
-                return fn(a, b) if a is not None and b is not None and fn is not None else None
-            case sx.Call():
-                args = [_eval(x, values) for x in expr.args]
-                f = _FUNCS.get(expr.func)
-                if f is None or len(args) != 1 or args[0] is None:
-                    return None
-                return float(f(args[0]))
-    except (ArithmeticError, ValueError):
-        return None
-    return None
+
+class _KnownMacroVariables(Variables):
+    """Fanuc/SZGH variables: only those assigned above the point are known."""
+
+    __slots__ = ("known",)
+
+    def __init__(self, dialect: Dialect, known: dict[int, float]) -> None:
+        super().__init__(layout_for(dialect))
+        self.known = known
+
+    def read(self, n: int, start: int = -1, end: int = -1) -> Value:
+        if n not in self.known:
+            raise _Unknown
+        return self.known[n]
+
+
+class _KnownParameters(Parameters):
+    """LinuxCNC parameters: only those assigned above the point are known."""
+
+    __slots__ = ("known",)
+
+    def __init__(self, known: dict[int, float]) -> None:
+        super().__init__()
+        self.known = known
+
+    def read_number(self, n: int) -> float:
+        if n not in self.known:
+            raise _Unknown
+        return self.known[n]
+
+    def lookup(self, name: str) -> float | None:
+        raise _Unknown
+
+
+class _Eval:
+    """``expr`` through the compiler's own evaluator for the dialect's macro flavour
+    (:mod:`cncc.frontend.macro.evaluate`, :mod:`cncc.frontend.linuxcnc.evaluate`), with
+    the variables assigned above; None when an operand is unknown or the compiler would
+    report an error (domain, division by zero ...)."""
+
+    def __init__(self, dialect: Dialect, values: dict[int, float]) -> None:
+        self._linuxcnc = LinuxcncEvaluator(_KnownParameters(values)) if dialect.macro_flavour == "linuxcnc" else None
+        self._macro = MacroEvaluator(_KnownMacroVariables(dialect, values))
+
+    def __call__(self, expr: object) -> float | None:
+        if not isinstance(expr, Num | Var | Neg | BinOp | Call):
+            return None
+        try:
+            if self._linuxcnc is not None:
+                return self._linuxcnc.number(expr)
+            return self._macro.value(expr)
+        except (_Unknown, MacroError, EvalError, ArithmeticError, ValueError):
+            return None

@@ -73,7 +73,7 @@ def write_npz(chunks: Iterable[StepChunk], out: IO[bytes]) -> None:
         for chunk in chunks:
             names = chunk.layout.axes
             for name, a in zip(names, chunk.axes, strict=True):
-                cols: tuple[np.ndarray, ...] = (  # type: ignore[type-arg]
+                cols: tuple[np.ndarray, ...] = (
                     a.t_ns, a.direction, a.backlash, a.phase, a.dir_t_ns, a.dir_level)
                 for (fname, dtype), arr in zip(_NPZ_FIELDS, cols, strict=True):
                     key = f"{name}_{fname}"
@@ -119,14 +119,14 @@ def write_pulses(chunks: Iterable[StepChunk], fmt: str, out: str | Path | IO[byt
         return stats
     if fmt == "npz":
         if isinstance(out, io.TextIOBase):
-            write_npz(counted, out.buffer)  # type: ignore[attr-defined]
+            write_npz(counted, out.buffer)
         else:
             write_npz(counted, out)  # type: ignore[arg-type]
         return stats
     if isinstance(out, io.TextIOBase) or hasattr(out, "encoding"):
         _write_text(counted, fmt, out, max_error_ns)  # type: ignore[arg-type]
     else:
-        wrapper = io.TextIOWrapper(out, encoding="ascii", newline="\n")  # type: ignore[type-var]
+        wrapper = io.TextIOWrapper(out, encoding="ascii", newline="\n")
         try:
             _write_text(counted, fmt, wrapper, max_error_ns)
         finally:

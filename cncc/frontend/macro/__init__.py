@@ -24,23 +24,22 @@ from cncc.source import SourceFile
 
 MACRO_FLAVOURS = frozenset({"fanuc", "szgh"})
 _HINTS = re.compile(r"#|\[|=|GOTO|WHILE|IF|THEN|WAT|OUT|MSG|STAF|FILE|PP", re.IGNORECASE)
-_CODE_PATTERNS: dict[str, re.Pattern[str]] = {}
 
 
 def _code_pattern(dialect: Dialect) -> re.Pattern[str]:
-    pat = _CODE_PATTERNS.get(dialect.name)
-    if pat is None:
-        alts = []
-        for c in dialect.codes.values():
-            if c.op in EXEC_OPS:
-                whole, frac = divmod(c.tenths, 10)
-                num = f"0*{whole}" + (rf"\.{frac}" if frac else r"(?![\d.])")
-                alts.append(f"{c.letter}[ \t]*{num}")
-        if dialect.macro_flavour == "szgh":
-            alts.append(r"M[ \t]*[12]8\d\d")
-        pat = re.compile("|".join(alts) or "$^", re.IGNORECASE)
-        _CODE_PATTERNS[dialect.name] = pat
-    return pat
+    return dialect.derived("macro.code_pattern", _build_code_pattern)
+
+
+def _build_code_pattern(dialect: Dialect) -> re.Pattern[str]:
+    alts = []
+    for c in dialect.codes.values():
+        if c.op in EXEC_OPS:
+            whole, frac = divmod(c.tenths, 10)
+            num = f"0*{whole}" + (rf"\.{frac}" if frac else r"(?![\d.])")
+            alts.append(f"{c.letter}[ \t]*{num}")
+    if dialect.macro_flavour == "szgh":
+        alts.append(r"M[ \t]*[12]8\d\d")
+    return re.compile("|".join(alts) or "$^", re.IGNORECASE)
 
 
 def needs_executor(text: str, dialect: Dialect) -> bool:

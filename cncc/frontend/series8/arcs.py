@@ -23,6 +23,7 @@ from typing import TYPE_CHECKING
 from cncc import diagnostics as dg
 from cncc.frontend import ops, rs274
 from cncc.frontend.series8 import state
+from cncc.frontend.series8.layer import LAYER
 from cncc.frontend.syntax import Word
 from cncc.ir import Plane, Vec6
 
@@ -156,5 +157,5 @@ def _wrap(inner: ops.MotionHandler, clockwise: bool) -> ops.MotionHandler:
     return arc
 
 
-ops.MOTIONS["arc_cw"] = _wrap(ops.MOTIONS["arc_cw"], True)
-ops.MOTIONS["arc_ccw"] = _wrap(ops.MOTIONS["arc_ccw"], False)
+LAYER.wrap_motion("arc_cw", lambda inner: _wrap(inner, True))
+LAYER.wrap_motion("arc_ccw", lambda inner: _wrap(inner, False))

@@ -28,11 +28,11 @@ from typing import TYPE_CHECKING
 from cncc import diagnostics as dg
 from cncc.dialects import CodeDef
 from cncc.frontend import ops
-from cncc.frontend.ops import handler
 from cncc.frontend.series8 import cavity_paths as cp
 from cncc.frontend.series8 import state
 from cncc.frontend.series8.codes import vendor_gate
 from cncc.frontend.series8.cycles import store_levels, tool_length
+from cncc.frontend.series8.layer import LAYER
 from cncc.ir import Arc, Command, CompSide, Frame, Linear, Motion, Rapid, Vec6
 
 if TYPE_CHECKING:
@@ -122,7 +122,7 @@ def _path(it: Interpreter, ctx: BlockContext, c: CodeDef, radius: float, step: f
     return (cp.rect_zigzag if zigzag else cp.rect_concentric)(max(a, 0.0), max(b, 0.0), step, ccw)
 
 
-@handler("cavity")
+@LAYER.handler("cavity")
 def _cavity(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     if not vendor_gate(it, ctx, c, _READING["circle" if c.cycle == "circle" else "rect"]):
         return

@@ -19,10 +19,10 @@ from typing import TYPE_CHECKING
 
 from cncc import diagnostics as dg
 from cncc.dialects import CodeDef
-from cncc.frontend import interp as _interp
 from cncc.frontend import ops, rs274
-from cncc.frontend.ops import handler, target
+from cncc.frontend.ops import target
 from cncc.frontend.series8 import state
+from cncc.frontend.series8.layer import LAYER
 from cncc.frontend.syntax import Word
 from cncc.ir import Aux, Dwell, FeedRate, Frame, Linear, SetMode, Vec6
 from cncc.ir.frame import Rotation, Scaling
@@ -33,7 +33,7 @@ if TYPE_CHECKING:
 _SHARP = {"linear_sharp": "linear", "arc_cw_sharp": "arc_cw", "arc_ccw_sharp": "arc_ccw"}
 _ONCE = ("absolute_once", "incremental_once", "machine_once")
 for _op in _ONCE:
-    _interp.ORDER[_op] = 82  # after G90/G91 in the same block
+    LAYER.set_order(_op, 82)  # after G90/G91 in the same block
 
 
 def _state(it: Interpreter) -> state.S8State:
@@ -84,7 +84,7 @@ def _dwell(it: Interpreter, ctx: BlockContext, c: CodeDef, st: state.S8State) ->
 
 
 # ---- G06 ------------------------------------------------------------------------------------
-@handler("sine_loop")
+@LAYER.handler("sine_loop")
 def _sine_loop(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     """S -> E -> S ``g06_cycles`` times; each stroke at the mean speed 2F/pi of p(t) = S + (E-S)(1-cos)/2."""
     ctx.axis_used = True
@@ -112,7 +112,7 @@ def _sine_loop(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
 
 
 # ---- G10 ------------------------------------------------------------------------------------
-@handler("corner_insert")
+@LAYER.handler("corner_insert")
 def _corner(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     rw, lw = ctx.words.get("R"), ctx.words.get("L")
     if (rw is None) == (lw is None):
@@ -128,7 +128,7 @@ def _corner(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
 
 
 # ---- G21-G23 --------------------------------------------------------------------------------
-@handler(*_SHARP)
+@LAYER.handler(*_SHARP)
 def _sharp(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     it.modal = it.modal.with_(motion=_SHARP[c.op], cycle="")
     _state(it).sharp = True
@@ -157,7 +157,7 @@ def _switch(it: Interpreter, ctx: BlockContext, frame: Frame, name: str, value: 
     ctx.out.append(SetMode(ctx.span, it.frame, name, value))
 
 
-@handler("rotate_s8")
+@LAYER.handler("rotate_s8")
 def _rotate(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     rw = ctx.words.get("R")
     if rw is None:
@@ -167,13 +167,13 @@ def _rotate(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     _switch(it, ctx, replace(it.frame, rotation=rot), "rotation", rot)
 
 
-@handler("rotate_off_s8")
+@LAYER.handler("rotate_off_s8")
 def _rotate_off(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     if it.frame.rotation is not None:
         _switch(it, ctx, replace(it.frame, rotation=None), "rotation", None)
 
 
-@handler("scale_s8")
+@LAYER.handler("scale_s8")
 def _scale(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     rw = ctx.words.get("R")
     if rw is None:
@@ -191,14 +191,14 @@ def _scale(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     _switch(it, ctx, replace(it.frame, scaling=scaling), "scaling", scaling)
 
 
-@handler("scale_off_s8")
+@LAYER.handler("scale_off_s8")
 def _scale_off(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     if it.frame.scaling is not None:
         _switch(it, ctx, replace(it.frame, scaling=None), "scaling", None)
 
 
 # ---- G67-G69 --------------------------------------------------------------------------------
-@handler(*_ONCE)
+@LAYER.handler(*_ONCE)
 def _once(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     st = _state(it)
     if st.restore_incremental is None:
@@ -231,12 +231,12 @@ def vendor_gate(it: Interpreter, ctx: BlockContext, c: CodeDef, reading: str = "
     return False
 
 
-@handler("vendor_cycle")
+@LAYER.handler("vendor_cycle")
 def _vendor(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     vendor_gate(it, ctx, c)
 
 
-@handler("aux_s8")
+@LAYER.handler("aux_s8")
 def _aux(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     ctx.out.append(Aux(ctx.span, it.frame, c.tenths))
 
@@ -324,7 +324,7 @@ def _preset(it: Interpreter, ctx: BlockContext, st: state.S8State, cd: CodeDef) 
         ctx.out.append(SetMode(ctx.span, it.frame, "css_reference", st.css_reference))
 
 
-ops.BLOCK_HOOKS.insert(0, _hook)
-ops.HANDLERS["dwell"] = _dwell_of(ops.HANDLERS["dwell"])
+LAYER.hook_first(_hook)
+LAYER.wrap_handler("dwell", _dwell_of)
 for _op in ("comp_left", "comp_right"):
-    ops.HANDLERS[_op] = _sided(ops.HANDLERS[_op])
+    LAYER.wrap_handler(_op, _sided)

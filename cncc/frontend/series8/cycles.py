@@ -28,6 +28,7 @@ from cncc.dialects import CodeDef
 from cncc.frontend import cycles as shared
 from cncc.frontend import ops
 from cncc.frontend.series8 import state
+from cncc.frontend.series8.layer import LAYER
 from cncc.ir import CompSide, Cycle, CycleKind, SetMode, Vec6
 
 if TYPE_CHECKING:
@@ -227,5 +228,5 @@ def _at_level(p: Vec6, axis: int, level: float) -> Vec6:
     return (q[0], q[1], q[2], q[3], q[4], q[5])
 
 
-ops.HANDLERS["cycle"] = _select(ops.HANDLERS["cycle"])
-ops.MOTIONS["cycle"] = _drill(ops.MOTIONS["cycle"])
+LAYER.wrap_handler("cycle", _select)
+LAYER.wrap_motion("cycle", _drill)

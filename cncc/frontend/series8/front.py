@@ -13,11 +13,13 @@ the ``series8`` dialect.  Around each block it:
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Iterator
 
 from cncc import diagnostics as dg
 from cncc.diagnostics import DiagnosticSink
 from cncc.dialects import Dialect
+from cncc.frontend import ops
 from cncc.frontend.interp import InterpOptions, Interpreter
 from cncc.frontend.parser import ParseOptions, Parser
 from cncc.frontend.series8 import arcs as _arcs  # noqa: F401  (registers the arc rules)
@@ -27,14 +29,21 @@ from cncc.frontend.series8 import cycles as _cycles  # noqa: F401  (registers G8
 from cncc.frontend.series8 import lathe, state
 from cncc.frontend.series8 import patterns as _patterns  # noqa: F401  (registers G49/G50)
 from cncc.frontend.series8.corners import Stream
+from cncc.frontend.series8.layer import LAYER
 from cncc.frontend.syntax import Block
 from cncc.ir import Arc, Command, Linear, Rapid, Units
 from cncc.source import SourceFile, Span
 
 
+@functools.cache
+def handler_table() -> ops.HandlerTable:
+    """The core table with the SERIES 8 layer on top (every registering module is imported above)."""
+    return LAYER.compose(ops.core_table())
+
+
 def lower_series8(src: SourceFile, dialect: Dialect, sink: DiagnosticSink, options: InterpOptions) -> Iterator[Command]:
     parser = Parser(dialect, sink, ParseOptions(strict=options.strict))
-    it = Interpreter(dialect, sink, src.source_id, options)
+    it = Interpreter(dialect, sink, src.source_id, options, table=handler_table())
     st = state.attach(it)
     st.x_diameter = bool(dialect.option("lathe_diameter_x", True)) and lathe.is_lathe_program(src.text)
     it.modal = it.modal.with_(cycle_return_initial=False)  # every SERIES 8 cycle returns to R

@@ -16,8 +16,8 @@ import re
 from dataclasses import replace
 from typing import TYPE_CHECKING
 
-from cncc.frontend import ops
 from cncc.frontend.series8 import state
+from cncc.frontend.series8.layer import LAYER
 from cncc.ir import Command, Linear, Units
 from cncc.ir.css import Css
 
@@ -69,4 +69,4 @@ def with_css(it: Interpreter, cmds: list[Command]) -> list[Command]:
     return out
 
 
-ops.BLOCK_HOOKS.insert(0, _diameter_hook)
+LAYER.hook_first(_diameter_hook)

@@ -28,10 +28,10 @@ from typing import TYPE_CHECKING
 from cncc import diagnostics as dg
 from cncc.dialects import CodeDef
 from cncc.frontend import ops
-from cncc.frontend.ops import handler
 from cncc.frontend.series8 import state
 from cncc.frontend.series8.codes import vendor_gate
 from cncc.frontend.series8.cycles import emit, store_levels, tool_length
+from cncc.frontend.series8.layer import LAYER
 from cncc.ir import CycleKind, Linear, Vec6
 
 if TYPE_CHECKING:
@@ -97,7 +97,7 @@ def _pitch(it: Interpreter, ctx: BlockContext, c: CodeDef, letter: str, count: i
     return it.reader.length_mm(w)
 
 
-@handler("rect_pattern")
+@LAYER.handler("rect_pattern")
 def _pattern(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     frame_reading = state.option(it, "rect_pattern_reading", "holes") == "frame"
     if not vendor_gate(it, ctx, c, _FRAME if frame_reading else _HOLES):
