@@ -120,3 +120,14 @@ def test_linuxcnc_g52_of_an_unpositioned_axis_moves_alike_from_any_start() -> No
         for start in STARTS:
             why = difference(run(text, "linuxcnc", start), run(out, target, start), 1e-3)
             assert not why, (target, start, why, out)
+
+
+def test_incremental_cycle_from_an_unknown_start_moves_alike() -> None:
+    """A G91 drilling cycle as the first motion: its holes are increments from wherever the machine is,
+    so no target may get them as absolute coordinates (the cycle is written as its G91 moves)."""
+    text = "G21 G17 G91 G98 G81 X10. Y10. Z-5. R-2. F100.\nX10.\nG80\nG90 G00 X0 Y0 Z50.\nM30\n"
+    for target in TARGETS:
+        out = translate(text, "fanuc", target)
+        for start in STARTS:
+            why = difference(run(text, "fanuc", start), run(out, target, start), 1e-3)
+            assert not why, (target, start, why, out)

@@ -657,6 +657,10 @@ class GcodeEmitter:
     # ---- canned cycles -----------------------------------------------------------------------
     def _cycle(self, c: Cycle) -> Iterator[str]:
         problem = cy.keep_problem(c, self.t)
+        if not problem and c.frame.incremental and self.unknown & {c.plane.first, c.plane.second, c.axis}:
+            # the kept cycle's words are absolute: from a position the output does not know they would
+            # assume where the machine starts, so the cycle is written as its moves (G91 blocks)
+            problem = "an incremental cycle before its axes have a known position"
         if not problem:
             yield from self._sync(c.frame, c.start, cancel_cycle=False)
             n = c.axis
