@@ -42,7 +42,7 @@ def _compiled(dialect: str, expr: str) -> float | None:
     cmds, r = compile_commands(text, dialect=dialect)
     scale = 1.0
     if TOO_BIG_FOR_A_WORD in [d.code for d in r.sink]:  # read it back scaled down in the program itself
-        cmds, r = compile_commands(text.replace("X#1", "X[#1/1000000000000]"), dialect=dialect)
+        cmds, r = compile_commands(text.replace("X#1", "X[#1/1000000/1000000]"), dialect=dialect)
         scale = SCALE
     if not r.ok:
         return None
