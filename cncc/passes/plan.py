@@ -53,6 +53,11 @@ if TYPE_CHECKING:
     from cncc.passes.planning.segments import Segments
 
 
+O2_PROFILE = "scurve"
+"""-O2's path profile: ``"scurve"`` (closed form, ``planning/scurve.py``) or ``"filter"``
+(the jerk filter and ruckig re-timing that -O3 starts from; kept for comparisons)."""
+
+
 def plan_commands(cmds: Sequence[Command], machine: MachineModel, level: int = 2,
                   sink: DiagnosticSink | None = None) -> Trajectory:
     """Plan ``cmds`` at ``-O<level>`` (0..3) on ``machine``; see the module docstring."""
@@ -94,7 +99,8 @@ def _plan_path(run: object, machine: MachineModel, limits: AxisLimits, level: in
     if level >= 2 and rule is CornerRule.BLEND:
         from cncc.passes.planning.corners import plan_blended
 
-        parts = plan_blended(run, machine, limits, lambda part: _profile(part, machine, limits, 2, rule, sink))
+        parts = plan_blended(run, machine, limits, lambda part: _profile(part, machine, limits, level, rule, sink),
+                             decide_stops=level >= 3)
         if level >= 3:
             from cncc.passes.planning.optimal import optimise
 
@@ -146,6 +152,7 @@ def _profile(seg: Segments, machine: MachineModel, limits: AxisLimits, level: in
     from cncc.passes.planning.fir import fir_profile
     from cncc.passes.planning.onedim import ruckig_move
     from cncc.passes.planning.profile import Phases, boundary_speeds, trapezoids
+    from cncc.passes.planning.scurve import scurve_profile
     from cncc.passes.planning.segments import take_off_speed
     from cncc.passes.planning.windows import replan_segments
 
@@ -158,6 +165,7 @@ def _profile(seg: Segments, machine: MachineModel, limits: AxisLimits, level: in
             seg.vvert[0], seg.vvert[-1] = take_off_speed(seg, limits, machine)
         x = boundary_speeds(seg.length, seg.vcap, seg.acap, seg.vvert**2)
         return trapezoids(seg.length, seg.vcap, seg.acap, x, seg.vlim, int(Limit.ACCEL))
+    raw_acap = seg.acap
     seg.acap = reduce_accel(seg, limits, machine.interpolation_period_s)
     if seg.count == 1:
         ph = ruckig_move(float(seg.length[0]), float(seg.vcap[0]), float(seg.acap[0]), float(seg.jcap[0]),
@@ -168,7 +176,9 @@ def _profile(seg: Segments, machine: MachineModel, limits: AxisLimits, level: in
         from cncc.source import NO_SPAN
 
         sink.emit(dg.PLAN_FALLBACK, NO_SPAN, "ruckig could not plan a move; the filtered profile is used")
-    return replan_segments(seg, fir_profile(seg))
+    if level >= 3 or O2_PROFILE == "filter":
+        return replan_segments(seg, fir_profile(seg))
+    return scurve_profile(seg, raw_acap)
 
 
 @register

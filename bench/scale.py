@@ -1,0 +1,55 @@
+"""Whole-process planner scale runs: ``cncc FILE --emit=timing --report-format=json`` per kind and size.
+
+Each run is a child process; its CPU seconds (user + system) and peak RSS come from
+``os.wait4``.  A run that exceeds the time limit is killed and shown as ``>limit``.
+"""
+
+from __future__ import annotations
+
+import os
+import signal
+import subprocess
+import sys
+import tempfile
+import time
+from dataclasses import dataclass
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+@dataclass(frozen=True)
+class Run:
+    cpu_s: float
+    rss_mb: float
+    rc: int  # -1: killed at the time limit
+    stderr: str
+
+
+def run_cncc(path: Path, args: list[str], limit_s: float) -> Run:
+    env = dict(os.environ, PYTHONPATH=str(ROOT))
+    cmd = [sys.executable, "-m", "cncc", str(path), *args]
+    with tempfile.TemporaryFile() as err:
+        proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=err, env=env)
+        start = time.monotonic()
+        killed = False
+        while True:
+            pid, status, usage = os.wait4(proc.pid, os.WNOHANG)
+            if pid:
+                break
+            if time.monotonic() - start > limit_s:
+                os.kill(proc.pid, signal.SIGKILL)
+                killed = True
+                pid, status, usage = os.wait4(proc.pid, 0)
+                break
+            time.sleep(0.02)
+        proc.returncode = 0
+        err.seek(0)
+        text = err.read().decode(errors="replace")
+    rc = -1 if killed else os.waitstatus_to_exitcode(status)
+    return Run(usage.ru_utime + usage.ru_stime, usage.ru_maxrss / 1024, rc, text)
+
+
+def timing_run(path: Path, level: int, limit_s: float, extra: list[str] | None = None) -> Run:
+    return run_cncc(path, ["--emit=timing", "--report-format=json", f"-O{level}", "-o", os.devnull,
+                           *(extra or [])], limit_s)
