@@ -74,3 +74,19 @@ def test_single_move_matches_ruckig_rest_to_rest(length: float, v_max: float) ->
     if length == 0.002:  # too short to reach A: 4 (L / 2J)^(1/3)
         assert ph.end_time == pytest.approx(4 * (length / (2 * j_max)) ** (1 / 3), rel=1e-9)
     assert math.isfinite(ph.end_time)
+
+
+def test_phase_info_looks_up_command_and_limit_by_time() -> None:
+    from cncc.ir.trajectory import Limit
+    from cncc.machines import load_machine
+    from cncc.passes.plan import plan_commands
+    from tests.passes._motion import line
+
+    cmds = [line((10, 10), (40, 10), 3000), line((40, 10), (40, 40), 600)]
+    traj = plan_commands(cmds, load_machine("generic-mill"), 2)
+    mid = traj.t0_s + traj.duration_s / 2
+    cmd, lim = traj.phase_info(mid)
+    assert cmd.tolist() == traj.cmd_index.tolist() and lim.tolist() == traj.limit.tolist()
+    cmd_end, _ = traj.phase_info(np.array([traj.duration_total_s + 1.0]))
+    assert cmd_end.tolist() == [1]
+    assert int(Limit.FEED) in lim.tolist()
