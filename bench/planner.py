@@ -158,30 +158,34 @@ def main() -> None:
 def scale_runs(sizes: list[int], kinds: str, limit_s: float) -> None:
     import tempfile
 
+    from bound import program_bound_s
     from pathgen import KINDS
     from scale import timing_run
 
     wanted = [k for k in KINDS if not kinds or k in kinds.split(",")]
     print(f"(e) whole process, cncc FILE --emit=timing --report-format=json, {_load()}")
-    print(f"    {'kind':12s} {'segments':>9s} {'-O1 CPU s':>10s} {'-O1 MB':>7s} {'-O2 CPU s':>10s} {'-O2 MB':>7s} "
-          f"{'O2/O1':>6s} {'-O2 seg/s':>10s} rc")
+    print("    CPU s and peak RSS per run; cycle: -O2 motion time / -O1's and / an independent lower bound")
+    print(f"    {'kind':12s} {'segments':>9s} {'-O1 CPU s':>10s} {'MB':>5s} {'-O2 CPU s':>10s} {'MB':>5s} "
+          f"{'CPU O2/O1':>9s} {'-O2 seg/s':>10s} {'O2/O1':>6s} {'O2/bound':>8s} rc")
     with tempfile.TemporaryDirectory() as tmp:
         for kind in wanted:
             for n in sizes:
-                path = Path(tmp) / f"{kind.replace(' ', '_')}_{n}.nc"
+                path = Path(tmp) / f"{kind.replace(' ', '_').replace('.', '')}_{n}.nc"
                 path.write_text(KINDS[kind](n))
-                r1 = timing_run(path, 1, limit_s)
-                r2 = timing_run(path, 2, limit_s)
+                r1, c1 = timing_run(path, 1, limit_s)
+                r2, c2 = timing_run(path, 2, limit_s)
+                bound = program_bound_s(str(path)) if n <= 20_000 else math.nan
 
                 def cpu(r: object) -> str:
                     assert hasattr(r, "rc") and hasattr(r, "cpu_s")
                     return f">{limit_s:.0f}" if r.rc == -1 else f"{r.cpu_s:.2f}"
 
-                ratio = "" if r1.rc == -1 or r2.rc == -1 else f"{r2.cpu_s / r1.cpu_s:6.2f}"
+                ratio = "" if r1.rc == -1 or r2.rc == -1 else f"{r2.cpu_s / r1.cpu_s:9.2f}"
                 rate = "" if r2.rc == -1 else f"{n / r2.cpu_s:10,.0f}"
                 codes = sorted(set(re.findall(r"[EW]0\d{3}", r2.stderr)))
-                print(f"    {kind:12s} {n:9,d} {cpu(r1):>10s} {r1.rss_mb:7.0f} {cpu(r2):>10s} {r2.rss_mb:7.0f} "
-                      f"{ratio:>6s} {rate:>10s} {r2.rc} {' '.join(codes)}", flush=True)
+                print(f"    {kind:12s} {n:9,d} {cpu(r1):>10s} {r1.rss_mb:5.0f} {cpu(r2):>10s} {r2.rss_mb:5.0f} "
+                      f"{ratio:>9s} {rate:>10s} {c2 / c1:6.3f} {c2 / bound:8.3f} {r2.rc} {' '.join(codes)}",
+                      flush=True)
 
 
 if __name__ == "__main__":

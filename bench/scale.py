@@ -50,6 +50,15 @@ def run_cncc(path: Path, args: list[str], limit_s: float) -> Run:
     return Run(usage.ru_utime + usage.ru_stime, usage.ru_maxrss / 1024, rc, text)
 
 
-def timing_run(path: Path, level: int, limit_s: float, extra: list[str] | None = None) -> Run:
-    return run_cncc(path, ["--emit=timing", "--report-format=json", f"-O{level}", "-o", os.devnull,
-                           *(extra or [])], limit_s)
+def timing_run(path: Path, level: int, limit_s: float, extra: list[str] | None = None) -> tuple[Run, float]:
+    """The run and the planned motion time (``columns[0].trajectory_s`` of the JSON report)."""
+    import json
+
+    out = path.with_suffix(f".O{level}.json")
+    run = run_cncc(path, ["--emit=timing", "--report-format=json", f"-O{level}", "-o", str(out), *(extra or [])],
+                   limit_s)
+    try:
+        cycle = float(json.loads(out.read_text())["columns"][0]["trajectory_s"])
+    except (OSError, ValueError, KeyError, IndexError):
+        cycle = float("nan")
+    return run, cycle
