@@ -90,3 +90,32 @@ def test_phase_info_looks_up_command_and_limit_by_time() -> None:
     cmd_end, _ = traj.phase_info(np.array([traj.duration_total_s + 1.0]))
     assert cmd_end.tolist() == [1]
     assert int(Limit.FEED) in lim.tolist()
+
+
+def test_tiny_zigzag_is_smoothed_within_tolerance() -> None:
+    # 1000 moves of 0.01 mm zig-zagging by 2 um (issue 26): within the 0.01 mm blend
+    # tolerance they are one straight 10 mm move; its ramps do not reach A (v/A < A/J),
+    # each lasts 2 sqrt(v/J) and covers v sqrt(v/J), so the S-curve takes L/v + 2 sqrt(v/J)
+    from cncc.diagnostics import DiagnosticSink
+    from cncc.machines import effective_corner_rule, load_machine
+    from cncc.passes.plan import plan_commands
+    from cncc.passes.verify import verify_trajectory
+    from tests.passes._motion import polyline
+
+    machine = load_machine("generic-mill")
+    pts = [(20 + 0.01 * i, 20 + 0.002 * (i % 2)) for i in range(1001)]
+    cmds = polyline(pts, 2000)
+    traj = plan_commands(cmds, machine, 2)
+    sink = DiagnosticSink()
+    report = verify_trajectory(traj, cmds, machine, sink, corner_rule=effective_corner_rule(machine, 2),
+                               check_dynamics=True, jerk_limited=True)
+    assert report.count == 0, [d.message for d in sink]
+    length = math.hypot(10.0, 0.0)  # end points (20, 20) and (30, 20)
+    v, a, j = 2000 / 60, 1500.0, 50000.0
+    assert v / a < a / j
+    straight = length / v + 2 * math.sqrt(v / j)
+    assert straight * (1 - 1e-9) <= traj.duration_total_s <= 1.02 * straight
+    # every sampled point within the tolerance of the zig-zag (its two lines y = 20 and 20.002)
+    p, _, _, _ = traj.sample(np.linspace(0, traj.duration_total_s, 5001))
+    assert np.all(p[:, 1] >= 20 - machine.blend_tolerance_mm)
+    assert np.all(p[:, 1] <= 20.002 + machine.blend_tolerance_mm)

@@ -47,6 +47,10 @@ def plan_blended(run: PathRun, machine: MachineModel, limits: AxisLimits,
                  profile: Callable[[Segments], Phases], decide_stops: bool = True) -> list[Part]:
     """The run's parts, profiled; ``decide_stops`` runs the stop-or-round decision (for the
     filter planner of -O3; the S-curve planner of -O2 passes every corner it can round)."""
+    if not decide_stops:
+        from cncc.passes.planning.smoothing import snap_short_moves
+
+        run = snap_short_moves(run)
     cand = candidates(run, limits, machine)
     if not cand.any():
         stop = None
