@@ -138,3 +138,9 @@ def program_bound_s(path: str, machine_name: str = "generic-mill") -> float:
     finally:
         plan.plan_commands = real
     return lower_bound_s(captured[0], load_machine(machine_name)) if captured else math.nan
+
+
+if __name__ == "__main__":
+    import sys
+
+    print(program_bound_s(sys.argv[1], sys.argv[2] if len(sys.argv) > 2 else "generic-mill"))

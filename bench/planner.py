@@ -156,9 +156,9 @@ def main() -> None:
 
 
 def scale_runs(sizes: list[int], kinds: str, limit_s: float) -> None:
+    import subprocess
     import tempfile
 
-    from bound import program_bound_s
     from pathgen import KINDS
     from scale import timing_run
 
@@ -174,7 +174,12 @@ def scale_runs(sizes: list[int], kinds: str, limit_s: float) -> None:
                 path.write_text(KINDS[kind](n))
                 r1, c1 = timing_run(path, 1, limit_s)
                 r2, c2 = timing_run(path, 2, limit_s)
-                bound = program_bound_s(str(path)) if n <= 20_000 else math.nan
+                bound = math.nan
+                if n <= 20_000:  # in a child: the bench process must stay small (children inherit its RSS)
+                    out = subprocess.run([sys.executable, str(Path(__file__).parent / "bound.py"), str(path)],
+                                         capture_output=True, text=True, env=dict(os.environ, PYTHONPATH=str(
+                                             Path(__file__).resolve().parents[1]))).stdout.strip()
+                    bound = float(out) if out else math.nan
 
                 def cpu(r: object) -> str:
                     assert hasattr(r, "rc") and hasattr(r, "cpu_s")

@@ -178,7 +178,7 @@ def _profile(seg: Segments, machine: MachineModel, limits: AxisLimits, level: in
         sink.emit(dg.PLAN_FALLBACK, NO_SPAN, "ruckig could not plan a move; the filtered profile is used")
     if level >= 3 or O2_PROFILE == "filter":
         return replan_segments(seg, fir_profile(seg))
-    return scurve_profile(seg, raw_acap)
+    return scurve_profile(seg, raw_acap, limits.jmax_mm_s3, machine.interpolation_period_s)
 
 
 @register

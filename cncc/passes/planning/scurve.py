@@ -205,10 +205,32 @@ def _ramp_phases(v0: FloatArray, v1: FloatArray, a_max: FloatArray, j_max: Float
     return dur, acc, jerk
 
 
-def scurve_profile(seg: Segments, raw_acap: FloatArray | None = None) -> Phases:
-    """The -O2 profile of one part (rest to rest); see the module docstring and :func:`block_caps`."""
+def step_accel_caps(seg: Segments, jmax_mm_s3: FloatArray, period_s: float) -> FloatArray:
+    """Path acceleration at each interior vertex whose per-axis step ``a |du_i|`` the
+    controller spreads over one period within the jerk limit: ``min_i j_i T / |du_i|``."""
+    du = np.abs(seg.u[1:] - seg.u[:-1])
+    with np.errstate(divide="ignore"):
+        out: FloatArray = np.where(du > 1e-12, jmax_mm_s3[None, :] * period_s / np.maximum(du, 1e-300),
+                                   np.inf).min(axis=1, initial=np.inf)
+    return out
+
+
+def scurve_profile(seg: Segments, raw_acap: FloatArray | None = None, jmax_mm_s3: FloatArray | None = None,
+                   period_s: float = 0.0) -> Phases:
+    """The -O2 profile of one part (rest to rest); see the module docstring and :func:`block_caps`.
+
+    With the per-axis jerk limits and the interpolation period, a block's acceleration is
+    also capped at its interior vertices by :func:`step_accel_caps` (the acceleration
+    changes direction there; at block boundaries it is zero)."""
     starts = blocks(seg)
     length, vcap, acap, jcap, wcap = block_caps(seg, starts, raw_acap)
+    if jmax_mm_s3 is not None and period_s > 0 and seg.count > 1:
+        caps = step_accel_caps(seg, jmax_mm_s3, period_s)  # vertex m = 1..k-1 at index m - 1
+        owner = np.searchsorted(starts, np.arange(1, seg.count), side="right") - 1
+        inside = np.arange(1, seg.count) != starts[owner]
+        vertex_cap = np.full(starts.size, np.inf)
+        np.minimum.at(vertex_cap, owner[inside], caps[inside])
+        acap = np.minimum(acap, vertex_cap)
     w = boundary_speeds(length, vcap, acap, jcap, wcap)
     vs, ve = w[:-1], w[1:]
     vp = _peak(vs, ve, length, vcap, acap, jcap)
@@ -238,8 +260,10 @@ def scurve_profile(seg: Segments, raw_acap: FloatArray | None = None) -> Phases:
     keep = flat > 1e-13
     dur_k = flat[keep]
     t0 = np.concatenate([[0.0], np.cumsum(dur_k)[:-1]])
+    first = np.repeat(starts, 7)[keep]
+    last = np.repeat(np.append(starts[1:], seg.count) - 1, 7)[keep]
     return Phases(t0, dur_k, s_ph.reshape(-1)[keep], v_ph.reshape(-1)[keep], acc.reshape(-1)[keep],
-                  jerk.reshape(-1)[keep], lim.reshape(-1)[keep])
+                  jerk.reshape(-1)[keep], lim.reshape(-1)[keep], segments=(first, last))
 
 
 def _block_limit(seg: Segments, starts: np.ndarray, vcap: FloatArray) -> np.ndarray:
