@@ -22,6 +22,7 @@ def _parser() -> argparse.ArgumentParser:
     p.add_argument("inputs", nargs="*", metavar="file", help="program files ('-' for standard input)")
     p.add_argument("-x", "--dialect", help="input dialect (default: guessed from the file; -v says which)")
     p.add_argument("-v", "--verbose", action="store_true", help="notes on what was chosen (the guessed dialect)")
+    p.add_argument("-q", "--quiet", action="store_true", help="no progress bars on long planning runs")
     p.add_argument("-t", "--target", help="target dialect for --emit=gcode (default: the input dialect)")
     p.add_argument("-m", "--machine", default="generic-mill", help="machine model name or TOML file")
     p.add_argument("--emit", default="canon", help="canon | ir | gcode | timing | pulses | none (default: canon)")
@@ -123,6 +124,7 @@ def build_options(ns: argparse.Namespace, error: Any) -> Any:
                    compare=ns.compare, annotate_time=ns.annotate_time,
                    pulse_format=ns.pulse_format, pulse_mode=ns.pulse_mode)
     opts.verbose = ns.verbose
+    opts.quiet = ns.quiet
     for flag in ns.flags:
         if flag == "syntax-only":
             opts.syntax_only = True

@@ -36,7 +36,7 @@ the rule they follow.
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Iterator, Sequence
+from collections.abc import Callable, Iterable, Iterator, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, ClassVar
 
@@ -59,8 +59,10 @@ O2_PROFILE = "scurve"
 
 
 def plan_commands(cmds: Sequence[Command], machine: MachineModel, level: int = 2,
-                  sink: DiagnosticSink | None = None) -> Trajectory:
-    """Plan ``cmds`` at ``-O<level>`` (0..3) on ``machine``; see the module docstring."""
+                  sink: DiagnosticSink | None = None, progress: Callable[[int], None] | None = None) -> Trajectory:
+    """Plan ``cmds`` at ``-O<level>`` (0..3) on ``machine``; see the module docstring.
+
+    ``progress(done)`` is called after each run with the number of commands planned."""
     from cncc.machines import effective_corner_rule
     from cncc.passes.planning.emit import assemble, merge_axes
     from cncc.passes.planning.geometry import IndependentRapid, build_runs
@@ -78,8 +80,12 @@ def plan_commands(cmds: Sequence[Command], machine: MachineModel, level: int = 2
             profiles = independent_axes(run.start, run.end, level, limits.rapid_mm_s, limits.amax_mm_s2,
                                         limits.jmax_mm_s3, take_off)
             chunks.append(merge_axes(profiles, run.start, run.cmd, _rapid_limit()))
+            if progress is not None:
+                progress(run.cmd + 1)
             continue
         chunks.extend(_plan_path(run, machine, limits, level, rule, sink))
+        if progress is not None and run.cmd.size:
+            progress(int(run.cmd[-1]) + 1)
     return assemble(chunks)
 
 

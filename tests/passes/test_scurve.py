@@ -119,3 +119,23 @@ def test_tiny_zigzag_is_smoothed_within_tolerance() -> None:
     p, _, _, _ = traj.sample(np.linspace(0, traj.duration_total_s, 5001))
     assert np.all(p[:, 1] >= 20 - machine.blend_tolerance_mm)
     assert np.all(p[:, 1] <= 20.002 + machine.blend_tolerance_mm)
+
+
+def test_planning_bar_on_a_terminal_only_and_not_with_quiet() -> None:
+    import io
+
+    from cncc.backends.timing.progress import PLAN_MIN_ITEMS, planning_bar
+
+    class Tty(io.StringIO):
+        def isatty(self) -> bool:
+            return True
+
+    for stream, quiet, drawn in ((Tty(), False, True), (Tty(), True, False), (io.StringIO(), False, False)):
+        with planning_bar("planning -O2", PLAN_MIN_ITEMS, quiet, stream) as update:
+            for k in range(0, PLAN_MIN_ITEMS + 1, PLAN_MIN_ITEMS // 4):
+                update(k)
+        assert (len(stream.getvalue()) > 0) is drawn
+    small = Tty()
+    with planning_bar("planning -O2", PLAN_MIN_ITEMS - 1, False, small) as update:
+        update(1)
+    assert small.getvalue() == ""
