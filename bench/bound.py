@@ -128,7 +128,8 @@ def program_bound_s(path: str, machine_name: str = "generic-mill") -> float:
     captured: list[list[Command]] = []
     real = plan.plan_commands
 
-    def spy(cmds: Sequence[Command], machine: MachineModel, level: int = 2, sink: object = None) -> object:
+    def spy(cmds: Sequence[Command], machine: MachineModel, level: int = 2, sink: object = None,
+            progress: object = None) -> object:
         captured.append(list(cmds))
         return real(cmds, machine, level, sink)  # type: ignore[arg-type]
 

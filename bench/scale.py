@@ -6,6 +6,7 @@ Each run is a child process; its CPU seconds (user + system) and peak RSS come f
 
 from __future__ import annotations
 
+import contextlib
 import os
 import signal
 import subprocess
@@ -26,9 +27,17 @@ class Run:
     stderr: str
 
 
+TIME = "/usr/bin/time"
+
+
 def run_cncc(path: Path, args: list[str], limit_s: float) -> Run:
+    """Peak RSS through ``/usr/bin/time`` when present: a child forked from this (larger)
+    process reports at least this process' RSS in ``wait4``, since exec keeps the forked
+    copy's high-water mark."""
     env = dict(os.environ, PYTHONPATH=str(ROOT))
-    cmd = [sys.executable, "-m", "cncc", str(path), *args]
+    rss_file = path.with_suffix(".rss")
+    timer = [TIME, "-f", "%M", "-o", str(rss_file)] if os.path.exists(TIME) else []
+    cmd = [*timer, sys.executable, "-m", "cncc", str(path), *args]
     with tempfile.TemporaryFile() as err:
         proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=err, env=env)
         start = time.monotonic()
@@ -47,7 +56,11 @@ def run_cncc(path: Path, args: list[str], limit_s: float) -> Run:
         err.seek(0)
         text = err.read().decode(errors="replace")
     rc = -1 if killed else os.waitstatus_to_exitcode(status)
-    return Run(usage.ru_utime + usage.ru_stime, usage.ru_maxrss / 1024, rc, text)
+    rss_mb = usage.ru_maxrss / 1024
+    if timer and not killed:
+        with contextlib.suppress(OSError, ValueError, IndexError):
+            rss_mb = int(rss_file.read_text().split()[-1]) / 1024
+    return Run(usage.ru_utime + usage.ru_stime, rss_mb, rc, text)
 
 
 def timing_run(path: Path, level: int, limit_s: float, extra: list[str] | None = None) -> tuple[Run, float]:

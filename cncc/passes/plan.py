@@ -102,11 +102,12 @@ def _plan_path(run: object, machine: MachineModel, limits: AxisLimits, level: in
     from cncc.passes.planning.segments import make_segments, split_at_stops
 
     assert isinstance(run, PathRun)
+    whole = level == 2 and O2_PROFILE == "scurve"  # the S-curve plans its stops itself: no parts
     if level >= 2 and rule is CornerRule.BLEND:
         from cncc.passes.planning.corners import plan_blended
 
         parts = plan_blended(run, machine, limits, lambda part: _profile(part, machine, limits, level, rule, sink),
-                             decide_stops=level >= 3)
+                             decide_stops=level >= 3, whole=whole)
         if level >= 3:
             from cncc.passes.planning.optimal import optimise
 
@@ -117,7 +118,7 @@ def _plan_path(run: object, machine: MachineModel, limits: AxisLimits, level: in
         return []
     _corner_caps(seg, limits, machine, level, rule)
     out = []
-    for part in split_at_stops(seg):
+    for part in [seg] if whole else split_at_stops(seg):
         ph = _profile(part, machine, limits, level, rule, sink)
         if level >= 3 and part.count > 1:
             from cncc.passes.planning.optimal import optimise

@@ -44,9 +44,11 @@ Part = tuple[Segments, Phases]
 
 
 def plan_blended(run: PathRun, machine: MachineModel, limits: AxisLimits,
-                 profile: Callable[[Segments], Phases], decide_stops: bool = True) -> list[Part]:
+                 profile: Callable[[Segments], Phases], decide_stops: bool = True, whole: bool = False
+                 ) -> list[Part]:
     """The run's parts, profiled; ``decide_stops`` runs the stop-or-round decision (for the
-    filter planner of -O3; the S-curve planner of -O2 passes every corner it can round)."""
+    filter planner of -O3; -O2 decides in closed form); ``whole`` keeps the run in one
+    part, its stops as zero vertex caps (the S-curve planner plans them itself)."""
     if not decide_stops:
         from cncc.passes.planning.smoothing import snap_short_moves
 
@@ -58,11 +60,11 @@ def plan_blended(run: PathRun, machine: MachineModel, limits: AxisLimits,
         stop = faster_stops(run, cand, limits, machine)
     else:
         stop = closed_form_stops(run, cand, limits, machine, _blend_speeds(run, machine, limits))
-    return [(part, profile(part)) for part in rounded_parts(run, stop, machine, limits)]
+    return [(part, profile(part)) for part in rounded_parts(run, stop, machine, limits, whole)]
 
 
-def rounded_parts(run: PathRun, stop: np.ndarray | None, machine: MachineModel, limits: AxisLimits
-                  ) -> list[Segments]:
+def rounded_parts(run: PathRun, stop: np.ndarray | None, machine: MachineModel, limits: AxisLimits,
+                  whole: bool = False) -> list[Segments]:
     """The run rounded except at ``stop`` (``(k+1,)`` bool), cut into parts at rest."""
     from cncc.passes.planning.blending import round_corners, velocity_step_caps
     from cncc.passes.planning.segments import make_segments, split_at_stops
@@ -77,7 +79,7 @@ def rounded_parts(run: PathRun, stop: np.ndarray | None, machine: MachineModel, 
         if stop is not None and seg.vorigin is not None:
             caps = np.where(stop[seg.vorigin[1:-1]], 0.0, caps)
         seg.vvert[1:-1] = np.minimum(seg.vvert[1:-1], caps)
-    return split_at_stops(seg)
+    return [seg] if whole else split_at_stops(seg)
 
 
 def candidates(run: PathRun, limits: AxisLimits, machine: MachineModel) -> np.ndarray:

@@ -98,7 +98,7 @@ def blocks(seg: Segments) -> np.ndarray:
     inner = seg.vvert[1:-1]
     near = np.minimum(seg.vcap[:-1], seg.vcap[1:])
     smooth = seg.smooth[1:-1] if seg.smooth is not None else np.zeros(k - 1, bool)
-    soft = smooth | (inner >= band * near)
+    soft = (smooth | (inner >= band * near)) & (inner > 0.0)  # a stop always ends a block
     # cap of each segment with its soft vertices
     left = np.concatenate([[np.inf], np.where(soft, inner, np.inf)])
     right = np.concatenate([np.where(soft, inner, np.inf), [np.inf]])
