@@ -59,7 +59,14 @@ def plan_blended(run: PathRun, machine: MachineModel, limits: AxisLimits,
     elif decide_stops:
         stop = faster_stops(run, cand, limits, machine)
     else:
-        stop = closed_form_stops(run, cand, limits, machine, _blend_speeds(run, machine, limits))
+        speeds, seg, caps = _blend_speeds(run, machine, limits)
+        stop = closed_form_stops(run, cand, limits, machine, speeds)
+        if whole and seg is not None and caps is not None and seg.vorigin is not None:
+            # stops only where the rounding left the corner sharp: the same geometry
+            rounded = np.bincount(seg.vorigin, minlength=run.points.shape[0]) > 1
+            if not (stop & rounded).any():
+                seg.vvert[1:-1] = np.minimum(seg.vvert[1:-1], np.where(stop[seg.vorigin[1:-1]], 0.0, caps))
+                return [(seg, profile(seg))]
     return [(part, profile(part)) for part in rounded_parts(run, stop, machine, limits, whole)]
 
 
@@ -127,19 +134,21 @@ def _reach_from_rest(length: FloatArray, a_max: FloatArray, j_max: FloatArray) -
     return out
 
 
-def _blend_speeds(run: PathRun, machine: MachineModel, limits: AxisLimits) -> FloatArray:
+def _blend_speeds(run: PathRun, machine: MachineModel, limits: AxisLimits
+                  ) -> tuple[FloatArray, Segments | None, FloatArray | None]:
     """Per run point: the lowest vertex cap of its blend arc with every corner rounded
-    (the velocity-step rule on the actual chords), ``inf`` where there is none."""
+    (the velocity-step rule on the actual chords), ``inf`` where there is none; and the
+    rounded segments with their vertex caps (reused when no rounded corner stops)."""
     from cncc.passes.planning.blending import round_corners, velocity_step_caps
     from cncc.passes.planning.segments import make_segments
 
     out = np.full(run.points.shape[0], np.inf)
     seg = make_segments(round_corners(run, limits, machine), limits, machine)
     if seg is None or seg.count < 2 or seg.vorigin is None:
-        return out
+        return out, None, None
     caps = velocity_step_caps(seg, limits, machine.interpolation_period_s)
     np.minimum.at(out, seg.vorigin[1:-1], caps)
-    return out
+    return out, seg, caps
 
 
 def closed_form_stops(run: PathRun, cand: np.ndarray, limits: AxisLimits, machine: MachineModel,
