@@ -111,7 +111,7 @@ def _plan_path(run: object, machine: MachineModel, limits: AxisLimits, level: in
         if level >= 3:
             from cncc.passes.planning.optimal import optimise
 
-            parts = [(part, optimise(part, ph, sink)) for part, ph in parts]
+            return [_judged_rows(part, ph, optimise(part, ph, sink), machine, limits, sink) for part, ph in parts]
         return [path_rows(part, ph) for part, ph in parts]
     seg = make_segments(run, limits, machine)
     if seg is None:
@@ -126,6 +126,36 @@ def _plan_path(run: object, machine: MachineModel, limits: AxisLimits, level: in
             ph = optimise(part, ph, sink)
         out.append(path_rows(part, ph))
     return out
+
+
+def _rows_within(rows: Rows, limits: AxisLimits) -> bool:
+    """Per-axis jerk and acceleration (both ends of every row) within the machine's limits."""
+    import numpy as np
+
+    d = rows.dur[:, None]
+    a_end = rows.a0 + rows.j * d
+    amax = limits.amax_mm_s2[None, :] * (1 + 1e-6) + 1e-9
+    return bool(np.all(np.abs(rows.j) <= limits.jmax_mm_s3[None, :] * (1 + 1e-6) + 1e-9)
+                and np.all(np.abs(rows.a0) <= amax) and np.all(np.abs(a_end) <= amax))
+
+
+def _judged_rows(part: Segments, start: Phases, best: Phases, machine: MachineModel, limits: AxisLimits,
+                 sink: DiagnosticSink) -> Rows:
+    """-O3's rows of a part: the optimised profile, else its start, else -O2's S-curve,
+    whichever first keeps every axis within its jerk and acceleration limits."""
+    from dataclasses import replace
+
+    from cncc.passes.planning.blending import reduce_accel
+    from cncc.passes.planning.emit import path_rows
+    from cncc.passes.planning.scurve import scurve_profile
+
+    for ph in (best, start):
+        rows = path_rows(part, ph)
+        if _rows_within(rows, limits):
+            return rows
+    raw = part.acap
+    seg = replace(part, acap=reduce_accel(part, limits, machine.interpolation_period_s))
+    return path_rows(seg, scurve_profile(seg, raw, limits.jmax_mm_s3, machine.interpolation_period_s))
 
 
 def _corner_caps(seg: Segments, limits: AxisLimits, machine: MachineModel, level: int, rule: CornerRule) -> None:
