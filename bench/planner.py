@@ -5,7 +5,12 @@ Run: ``python bench/planner.py [--quick] [--repeat N]``.  Prints the machine loa
 (a) segments per second at -O1 and -O2 on a 100,000-segment CAM path (goal -O2 >= 10,000);
 (b) cycle time -O2 / -O3 on short paths (goal <= 1.03 each);
 (c) -O2 against jerk-limited exact stop at every corner and against -O1, as ratios;
-(d) the number of verify violations of every plan (goal 0).
+(d) the number of verify violations of every plan (goal 0);
+(e) with ``--scale N,N,...``: whole-process runs (``cncc FILE --emit=timing
+    --report-format=json``) on generated programs of every kind (``bench/pathgen.py``)
+    at each size: CPU s and peak RSS at -O1 and -O2, their ratio, -O2 segments per CPU
+    second, and the -O2 exit code (goals: -O2 >= 20,000 segments/s at 100k, -O2 CPU
+    <= 3x -O1, RSS < 300 MB, exit 0).  ``--scale-only`` skips (a)-(d).
 """
 
 from __future__ import annotations
@@ -13,6 +18,7 @@ from __future__ import annotations
 import argparse
 import math
 import os
+import re
 import sys
 import time
 from pathlib import Path
@@ -20,6 +26,7 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 import itertools
 
@@ -104,7 +111,15 @@ def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--quick", action="store_true", help="10,000 segments and no -O3")
     ap.add_argument("--repeat", type=int, default=3, help="throughput runs per level (the best is shown)")
+    ap.add_argument("--scale", default="", help="sizes for the whole-process runs, e.g. 1000,10000,100000")
+    ap.add_argument("--scale-only", action="store_true", help="only the whole-process runs")
+    ap.add_argument("--kinds", default="", help="comma-separated subset of the path kinds")
+    ap.add_argument("--limit", type=float, default=300.0, help="seconds before a whole-process run is killed")
     args = ap.parse_args()
+    if args.scale:
+        scale_runs([int(x) for x in args.scale.split(",")], args.kinds, args.limit)
+        if args.scale_only:
+            return
     machine = load_machine("generic-mill")
     violations = 0
     n = 10_000 if args.quick else 100_000
@@ -138,6 +153,44 @@ def main() -> None:
         print(f"    worst -O2 / -O3: {worst:.3f}")
     print(f"(d) verify violations over all plans: {violations}")
     print(f"done, {_load()}")
+
+
+def scale_runs(sizes: list[int], kinds: str, limit_s: float) -> None:
+    import subprocess
+    import tempfile
+
+    from pathgen import KINDS
+    from scale import timing_run
+
+    wanted = [k for k in KINDS if not kinds or k in kinds.split(",")]
+    print(f"(e) whole process, cncc FILE --emit=timing --report-format=json, {_load()}")
+    print("    CPU s and peak RSS per run; cycle: -O2 motion time / -O1's and / an independent lower bound")
+    print(f"    {'kind':12s} {'segments':>9s} {'-O1 CPU s':>10s} {'MB':>5s} {'-O2 CPU s':>10s} {'MB':>5s} "
+          f"{'CPU O2/O1':>9s} {'-O2 seg/s':>10s} {'O2/O1':>6s} {'O2/bound':>8s} rc")
+    with tempfile.TemporaryDirectory() as tmp:
+        for kind in wanted:
+            for n in sizes:
+                path = Path(tmp) / f"{kind.replace(' ', '_').replace('.', '')}_{n}.nc"
+                path.write_text(KINDS[kind](n))
+                r1, c1 = timing_run(path, 1, limit_s)
+                r2, c2 = timing_run(path, 2, limit_s)
+                bound = math.nan
+                if n <= 20_000:  # in a child: the bench process must stay small (children inherit its RSS)
+                    out = subprocess.run([sys.executable, str(Path(__file__).parent / "bound.py"), str(path)],
+                                         capture_output=True, text=True, env=dict(os.environ, PYTHONPATH=str(
+                                             Path(__file__).resolve().parents[1]))).stdout.strip()
+                    bound = float(out) if out else math.nan
+
+                def cpu(r: object) -> str:
+                    assert hasattr(r, "rc") and hasattr(r, "cpu_s")
+                    return f">{limit_s:.0f}" if r.rc == -1 else f"{r.cpu_s:.2f}"
+
+                ratio = "" if r1.rc == -1 or r2.rc == -1 else f"{r2.cpu_s / r1.cpu_s:9.2f}"
+                rate = "" if r2.rc == -1 else f"{n / r2.cpu_s:10,.0f}"
+                codes = sorted(set(re.findall(r"[EW]0\d{3}", r2.stderr)))
+                print(f"    {kind:12s} {n:9,d} {cpu(r1):>10s} {r1.rss_mb:5.0f} {cpu(r2):>10s} {r2.rss_mb:5.0f} "
+                      f"{ratio:>9s} {rate:>10s} {c2 / c1:6.3f} {c2 / bound:8.3f} {r2.rc} {' '.join(codes)}",
+                      flush=True)
 
 
 if __name__ == "__main__":

@@ -57,6 +57,7 @@ class Options:
     annotate_time: bool = False  # timing: the program with elapsed times as comments
     verbose: bool = False  # -v: notes on what the driver chose (the guessed dialect)
     start_machine_mm: tuple[float, ...] | None = None  # machine position at the start (default: the G54 zero)
+    quiet: bool = False  # -q: no progress bars
     # translation (--emit=gcode -t, cncc/backends/gcode, docs/translation.md)
     units: str = ""  # --units: "" as programmed, "mm" or "inch"
     line_numbers: bool = False  # -fline-numbers
@@ -537,7 +538,7 @@ def run_backend(cmds: Iterator[Command], src: SourceFile, sources: SourceMap, di
 
 
 def plan_trajectory(cmds: list[Command], machine: MachineModel, level: int, sink: DiagnosticSink,
-                    verify: bool = True, soft_limits: bool = False) -> tuple[Any, str]:
+                    verify: bool = True, soft_limits: bool = False, quiet: bool = False) -> tuple[Any, str]:
     """(Trajectory, how it was made): blend, then the nominal one at -O0, else the planner's;
     then (``verify``, -O1..-O3) the verify pass, whose violations become diagnostics.  The
     -O0 nominal estimate is not verified: it has no acceleration by design, runs the
@@ -559,9 +560,12 @@ def plan_trajectory(cmds: list[Command], machine: MachineModel, level: int, sink
 
         traj, how = nominal_trajectory(blended, machine), "nominal: length / feed"
     else:
+        from cncc.backends.timing.progress import planning_bar
         from cncc.passes.plan import plan_commands
 
-        traj, how = plan_commands(blended, machine, level=level, sink=sink), f"planned -O{level}"
+        with planning_bar(f"planning -O{level} on {machine.name}", len(blended), quiet) as update:
+            traj = plan_commands(blended, machine, level=level, sink=sink, progress=update)
+        how = f"planned -O{level}"
     if verify and level > 0:  # -O0 is the CAM-style estimate: no machine plan to check
         verify_trajectory(traj, blended, machine, sink, corner_rule=effective_corner_rule(machine, level),
                           check_dynamics=True, jerk_limited=level >= 2, check_soft_limits=soft_limits)
@@ -605,7 +609,7 @@ def pulse_backend(cmds: Iterator[Command], machine: MachineModel, opts: Options,
         sink.emit(dg.BAD_OPTION, NO_SPAN, problem)
         return iter(())
     traj, _ = plan_trajectory(cmd_list, machine, opts.opt_level, sink, verify=opts.verify,
-                              soft_limits=opts.offsets_file is not None)
+                              soft_limits=opts.offsets_file is not None, quiet=opts.quiet)
     pauses = event_pauses(cmd_list, traj.cmd_index, machine)  # the timing report's event times
     chunks = generate_pulses(traj, machine, mode=opts.pulse_mode, spans=[c.span for c in cmd_list], sink=sink,
                              pauses=pauses, reversals=reversal_pauses(traj, machine, mode=opts.pulse_mode))
@@ -620,7 +624,6 @@ def pulse_backend(cmds: Iterator[Command], machine: MachineModel, opts: Options,
 def timing_runs(cmds: list[Command], machine: MachineModel, opts: Options, sink: DiagnosticSink) -> list[Any]:
     """One planned Run per report column (``--compare``, else -O<level> and the nominal estimate)."""
     from cncc.backends.timing import Run, default_columns, parse_compare
-    from cncc.backends.timing.progress import stage
 
     specs = parse_compare(opts.compare, opts.opt_level) if opts.compare else default_columns(opts.opt_level)
     if isinstance(specs, str):
@@ -631,9 +634,8 @@ def timing_runs(cmds: list[Command], machine: MachineModel, opts: Options, sink:
         model = machine if spec.machine is None else resolve_machine(spec.machine, sink)
         if model is None:
             return []
-        with stage(f"planning {spec.label} on {model.name}", len(cmds)):
-            traj, how = plan_trajectory(cmds, model, spec.level, sink, verify=opts.verify,
-                                        soft_limits=opts.offsets_file is not None)
+        traj, how = plan_trajectory(cmds, model, spec.level, sink, verify=opts.verify,
+                                    soft_limits=opts.offsets_file is not None, quiet=opts.quiet)
         runs.append(Run(spec.label, model, spec.level, traj, how, nominal=spec.level == 0,
                         reversals=reversal_events(traj, model, opts)))
     return runs

@@ -99,6 +99,19 @@ class Trajectory:
         a = a0 + j * tau
         return p, v, a, j
 
+    def phase_at(self, t_s: FloatArray) -> IntArray:
+        """Index of the phase that covers each time of ``t_s`` (clipped to the first/last phase)."""
+        out: IntArray = np.clip(np.searchsorted(self.t0_s, t_s, side="right") - 1, 0,
+                                max(self.phase_count - 1, 0)).astype(np.int64)
+        return out
+
+    def phase_info(self, t_s: FloatArray) -> tuple[IntArray, npt.NDArray[np.int8]]:
+        """``cmd_index`` and ``limit`` of the phase at each time of ``t_s`` (shape ``(q,)`` each)."""
+        if self.phase_count == 0:
+            return np.zeros(np.shape(t_s), np.int64), np.zeros(np.shape(t_s), np.int8)
+        k = self.phase_at(t_s)
+        return self.cmd_index[k], self.limit[k]
+
     @staticmethod
     def empty(axes: tuple[str, ...] = AXES) -> Trajectory:
         m = len(axes)

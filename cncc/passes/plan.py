@@ -36,7 +36,7 @@ the rule they follow.
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Iterator, Sequence
+from collections.abc import Callable, Iterable, Iterator, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, ClassVar
 
@@ -53,9 +53,16 @@ if TYPE_CHECKING:
     from cncc.passes.planning.segments import Segments
 
 
+O2_PROFILE = "scurve"
+"""-O2's path profile: ``"scurve"`` (closed form, ``planning/scurve.py``) or ``"filter"``
+(the jerk filter and ruckig re-timing that -O3 starts from; kept for comparisons)."""
+
+
 def plan_commands(cmds: Sequence[Command], machine: MachineModel, level: int = 2,
-                  sink: DiagnosticSink | None = None) -> Trajectory:
-    """Plan ``cmds`` at ``-O<level>`` (0..3) on ``machine``; see the module docstring."""
+                  sink: DiagnosticSink | None = None, progress: Callable[[int], None] | None = None) -> Trajectory:
+    """Plan ``cmds`` at ``-O<level>`` (0..3) on ``machine``; see the module docstring.
+
+    ``progress(done)`` is called after each run with the number of commands planned."""
     from cncc.machines import effective_corner_rule
     from cncc.passes.planning.emit import assemble, merge_axes
     from cncc.passes.planning.geometry import IndependentRapid, build_runs
@@ -73,8 +80,12 @@ def plan_commands(cmds: Sequence[Command], machine: MachineModel, level: int = 2
             profiles = independent_axes(run.start, run.end, level, limits.rapid_mm_s, limits.amax_mm_s2,
                                         limits.jmax_mm_s3, take_off)
             chunks.append(merge_axes(profiles, run.start, run.cmd, _rapid_limit()))
+            if progress is not None:
+                progress(run.cmd + 1)
             continue
         chunks.extend(_plan_path(run, machine, limits, level, rule, sink))
+        if progress is not None and run.cmd.size:
+            progress(int(run.cmd[-1]) + 1)
     return assemble(chunks)
 
 
@@ -91,21 +102,23 @@ def _plan_path(run: object, machine: MachineModel, limits: AxisLimits, level: in
     from cncc.passes.planning.segments import make_segments, split_at_stops
 
     assert isinstance(run, PathRun)
+    whole = level == 2 and O2_PROFILE == "scurve"  # the S-curve plans its stops itself: no parts
     if level >= 2 and rule is CornerRule.BLEND:
         from cncc.passes.planning.corners import plan_blended
 
-        parts = plan_blended(run, machine, limits, lambda part: _profile(part, machine, limits, 2, rule, sink))
+        parts = plan_blended(run, machine, limits, lambda part: _profile(part, machine, limits, level, rule, sink),
+                             decide_stops=level >= 3, whole=whole)
         if level >= 3:
             from cncc.passes.planning.optimal import optimise
 
-            parts = [(part, optimise(part, ph, sink)) for part, ph in parts]
+            return [_judged_rows(part, ph, optimise(part, ph, sink), machine, limits, sink) for part, ph in parts]
         return [path_rows(part, ph) for part, ph in parts]
     seg = make_segments(run, limits, machine)
     if seg is None:
         return []
     _corner_caps(seg, limits, machine, level, rule)
     out = []
-    for part in split_at_stops(seg):
+    for part in [seg] if whole else split_at_stops(seg):
         ph = _profile(part, machine, limits, level, rule, sink)
         if level >= 3 and part.count > 1:
             from cncc.passes.planning.optimal import optimise
@@ -113,6 +126,36 @@ def _plan_path(run: object, machine: MachineModel, limits: AxisLimits, level: in
             ph = optimise(part, ph, sink)
         out.append(path_rows(part, ph))
     return out
+
+
+def _rows_within(rows: Rows, limits: AxisLimits) -> bool:
+    """Per-axis jerk and acceleration (both ends of every row) within the machine's limits."""
+    import numpy as np
+
+    d = rows.dur[:, None]
+    a_end = rows.a0 + rows.j * d
+    amax = limits.amax_mm_s2[None, :] * (1 + 1e-6) + 1e-9
+    return bool(np.all(np.abs(rows.j) <= limits.jmax_mm_s3[None, :] * (1 + 1e-6) + 1e-9)
+                and np.all(np.abs(rows.a0) <= amax) and np.all(np.abs(a_end) <= amax))
+
+
+def _judged_rows(part: Segments, start: Phases, best: Phases, machine: MachineModel, limits: AxisLimits,
+                 sink: DiagnosticSink) -> Rows:
+    """-O3's rows of a part: the optimised profile, else its start, else -O2's S-curve,
+    whichever first keeps every axis within its jerk and acceleration limits."""
+    from dataclasses import replace
+
+    from cncc.passes.planning.blending import reduce_accel
+    from cncc.passes.planning.emit import path_rows
+    from cncc.passes.planning.scurve import scurve_profile
+
+    for ph in (best, start):
+        rows = path_rows(part, ph)
+        if _rows_within(rows, limits):
+            return rows
+    raw = part.acap
+    seg = replace(part, acap=reduce_accel(part, limits, machine.interpolation_period_s))
+    return path_rows(seg, scurve_profile(seg, raw, limits.jmax_mm_s3, machine.interpolation_period_s))
 
 
 def _corner_caps(seg: Segments, limits: AxisLimits, machine: MachineModel, level: int, rule: CornerRule) -> None:
@@ -146,6 +189,7 @@ def _profile(seg: Segments, machine: MachineModel, limits: AxisLimits, level: in
     from cncc.passes.planning.fir import fir_profile
     from cncc.passes.planning.onedim import ruckig_move
     from cncc.passes.planning.profile import Phases, boundary_speeds, trapezoids
+    from cncc.passes.planning.scurve import scurve_profile
     from cncc.passes.planning.segments import take_off_speed
     from cncc.passes.planning.windows import replan_segments
 
@@ -158,6 +202,7 @@ def _profile(seg: Segments, machine: MachineModel, limits: AxisLimits, level: in
             seg.vvert[0], seg.vvert[-1] = take_off_speed(seg, limits, machine)
         x = boundary_speeds(seg.length, seg.vcap, seg.acap, seg.vvert**2)
         return trapezoids(seg.length, seg.vcap, seg.acap, x, seg.vlim, int(Limit.ACCEL))
+    raw_acap = seg.acap
     seg.acap = reduce_accel(seg, limits, machine.interpolation_period_s)
     if seg.count == 1:
         ph = ruckig_move(float(seg.length[0]), float(seg.vcap[0]), float(seg.acap[0]), float(seg.jcap[0]),
@@ -168,7 +213,9 @@ def _profile(seg: Segments, machine: MachineModel, limits: AxisLimits, level: in
         from cncc.source import NO_SPAN
 
         sink.emit(dg.PLAN_FALLBACK, NO_SPAN, "ruckig could not plan a move; the filtered profile is used")
-    return replan_segments(seg, fir_profile(seg))
+    if level >= 3 or O2_PROFILE == "filter":
+        return replan_segments(seg, fir_profile(seg))
+    return scurve_profile(seg, raw_acap, limits.jmax_mm_s3, machine.interpolation_period_s)
 
 
 @register

@@ -238,10 +238,12 @@ def test_absurd_feeds_give_diagnostics_not_exceptions(feed: float) -> None:
 def test_narrow_filter_where_speeds_change_little() -> None:
     # 0.3 mm zig-zag at 9000 mm/min: the speed moves between close corner caps, where a
     # narrow jerk filter (less acceleration, shorter forced cruises) is the faster one
+    from cncc.passes import plan as plan_mod
     from cncc.passes.planning import fir, windows
 
     cmds = polyline([(20 + 0.3 * i, 30 + 0.05 * (i % 3)) for i in range(30)], 9000)
     shares, steps, most = fir.TF_SHARES, fir.REFINE_STEPS, windows.MAX_SEGMENTS
+    plan_mod.O2_PROFILE = "filter"  # the filter planner that -O3 starts from
     try:
         windows.MAX_SEGMENTS = 0  # the filter alone, without the ruckig re-planning
         t_best = plan(cmds, level=2).duration_total_s
@@ -249,6 +251,7 @@ def test_narrow_filter_where_speeds_change_little() -> None:
         t_wide = plan(cmds, level=2).duration_total_s
     finally:
         fir.TF_SHARES, fir.REFINE_STEPS, windows.MAX_SEGMENTS = shares, steps, most
+        plan_mod.O2_PROFILE = "scurve"
     assert t_best < 0.95 * t_wide
 
 
@@ -287,17 +290,20 @@ def test_short_peak_cut_at_higher_minimum_between_the_minima() -> None:
 
 def test_ruckig_replanning_never_slower_and_verified() -> None:
     # the same zig-zag: each segment's piece re-timed by ruckig between the vertex states
+    from cncc.passes import plan as plan_mod
     from cncc.passes.planning import windows
 
     cmds = polyline([(20 + 0.3 * i, 30 + 0.05 * (i % 3)) for i in range(30)], 9000)
     machine = load_machine("generic-mill")
-    replanned = plan_commands(cmds, machine, 2)
     most = windows.MAX_SEGMENTS
+    plan_mod.O2_PROFILE = "filter"  # the filter planner that -O3 starts from
     try:
+        replanned = plan_commands(cmds, machine, 2)
         windows.MAX_SEGMENTS = 0
         filtered = plan_commands(cmds, machine, 2)
     finally:
         windows.MAX_SEGMENTS = most
+        plan_mod.O2_PROFILE = "scurve"
     assert replanned.duration_total_s < filtered.duration_total_s
     sink = DiagnosticSink()
     report = verify_trajectory(replanned, cmds, machine, sink, corner_rule=effective_corner_rule(machine, 2),

@@ -9,7 +9,7 @@ or spinner (rich is imported only then).  Pipes, files and tests never see them.
 from __future__ import annotations
 
 import sys
-from collections.abc import Iterable, Iterator
+from collections.abc import Callable, Iterable, Iterator
 from contextlib import contextmanager
 from typing import Protocol, TextIO, TypeVar
 
@@ -83,3 +83,29 @@ def stage(label: str, size: int, stream: TextIO | None = None) -> Iterator[None]
     console = Console(file=stream if stream is not None else sys.stderr)
     with console.status(label):
         yield
+
+
+PLAN_MIN_ITEMS = 20_000
+"""Commands from which planning is expected to take more than about 2 s: a bar with ETA."""
+
+
+@contextmanager
+def planning_bar(label: str, total: int, quiet: bool = False, stream: TextIO | None = None
+                 ) -> Iterator[Callable[[int], None]]:
+    """A bar with percentage and ETA over ``total`` commands; yields ``update(done)``.
+
+    Drawn only on a terminal, for at least :data:`PLAN_MIN_ITEMS` commands and without
+    ``quiet`` (``-q``); otherwise ``update`` does nothing."""
+    s = stream if stream is not None else sys.stderr
+    isatty = getattr(s, "isatty", None)
+    if quiet or total < PLAN_MIN_ITEMS or not (isatty and isatty()):
+        yield lambda done: None
+        return
+    from rich.console import Console
+    from rich.progress import BarColumn, Progress, TaskProgressColumn, TextColumn, TimeRemainingColumn
+
+    console = Console(file=s)
+    with Progress(TextColumn("{task.description}"), BarColumn(), TaskProgressColumn(), TimeRemainingColumn(),
+                  console=console, transient=True) as bar:
+        task = bar.add_task(label, total=total)
+        yield lambda done: bar.update(task, completed=done)

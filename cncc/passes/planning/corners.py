@@ -44,14 +44,34 @@ Part = tuple[Segments, Phases]
 
 
 def plan_blended(run: PathRun, machine: MachineModel, limits: AxisLimits,
-                 profile: Callable[[Segments], Phases]) -> list[Part]:
+                 profile: Callable[[Segments], Phases], decide_stops: bool = True, whole: bool = False
+                 ) -> list[Part]:
+    """The run's parts, profiled; ``decide_stops`` runs the stop-or-round decision (for the
+    filter planner of -O3; -O2 decides in closed form); ``whole`` keeps the run in one
+    part, its stops as zero vertex caps (the S-curve planner plans them itself)."""
+    if not decide_stops:
+        from cncc.passes.planning.smoothing import snap_short_moves
+
+        run = snap_short_moves(run)
     cand = candidates(run, limits, machine)
-    stop = faster_stops(run, cand, limits, machine) if cand.any() else None
-    return [(part, profile(part)) for part in rounded_parts(run, stop, machine, limits)]
+    if not cand.any():
+        stop = None
+    elif decide_stops:
+        stop = faster_stops(run, cand, limits, machine)
+    else:
+        speeds, seg, caps = _blend_speeds(run, machine, limits)
+        stop = closed_form_stops(run, cand, limits, machine, speeds)
+        if whole and seg is not None and caps is not None and seg.vorigin is not None:
+            # stops only where the rounding left the corner sharp: the same geometry
+            rounded = np.bincount(seg.vorigin, minlength=run.points.shape[0]) > 1
+            if not (stop & rounded).any():
+                seg.vvert[1:-1] = np.minimum(seg.vvert[1:-1], np.where(stop[seg.vorigin[1:-1]], 0.0, caps))
+                return [(seg, profile(seg))]
+    return [(part, profile(part)) for part in rounded_parts(run, stop, machine, limits, whole)]
 
 
-def rounded_parts(run: PathRun, stop: np.ndarray | None, machine: MachineModel, limits: AxisLimits
-                  ) -> list[Segments]:
+def rounded_parts(run: PathRun, stop: np.ndarray | None, machine: MachineModel, limits: AxisLimits,
+                  whole: bool = False) -> list[Segments]:
     """The run rounded except at ``stop`` (``(k+1,)`` bool), cut into parts at rest."""
     from cncc.passes.planning.blending import round_corners, velocity_step_caps
     from cncc.passes.planning.segments import make_segments, split_at_stops
@@ -66,7 +86,7 @@ def rounded_parts(run: PathRun, stop: np.ndarray | None, machine: MachineModel, 
         if stop is not None and seg.vorigin is not None:
             caps = np.where(stop[seg.vorigin[1:-1]], 0.0, caps)
         seg.vvert[1:-1] = np.minimum(seg.vvert[1:-1], caps)
-    return split_at_stops(seg)
+    return [seg] if whole else split_at_stops(seg)
 
 
 def candidates(run: PathRun, limits: AxisLimits, machine: MachineModel) -> np.ndarray:
@@ -101,6 +121,81 @@ def candidates(run: PathRun, limits: AxisLimits, machine: MachineModel) -> np.nd
     turning = half > 5e-4
     cand[v] = turning & (len_in > 1e-9) & (len_out > 1e-9) & (v_arc < SLOW_CORNER * np.minimum(v_in, v_out))
     return cand
+
+
+def _reach_from_rest(length: FloatArray, a_max: FloatArray, j_max: FloatArray) -> FloatArray:
+    """Largest speed a ramp from rest (zero acceleration at both ends) reaches within ``length``."""
+    tj = a_max / j_max
+    short = length < a_max * tj * tj
+    dv_short = (length * np.sqrt(j_max)) ** (2 / 3)
+    b = tj / 2
+    dv_long = -2 * (-length) / (b + np.sqrt(b * b + 2 * length / a_max))
+    out: FloatArray = np.where(short, dv_short, dv_long)
+    return out
+
+
+def _blend_speeds(run: PathRun, machine: MachineModel, limits: AxisLimits
+                  ) -> tuple[FloatArray, Segments | None, FloatArray | None]:
+    """Per run point: the lowest vertex cap of its blend arc with every corner rounded
+    (the velocity-step rule on the actual chords), ``inf`` where there is none; and the
+    rounded segments with their vertex caps (reused when no rounded corner stops)."""
+    from cncc.passes.planning.blending import round_corners, velocity_step_caps
+    from cncc.passes.planning.segments import make_segments
+
+    out = np.full(run.points.shape[0], np.inf)
+    seg = make_segments(round_corners(run, limits, machine), limits, machine)
+    if seg is None or seg.count < 2 or seg.vorigin is None:
+        return out, None, None
+    caps = velocity_step_caps(seg, limits, machine.interpolation_period_s)
+    np.minimum.at(out, seg.vorigin[1:-1], caps)
+    return out, seg, caps
+
+
+def closed_form_stops(run: PathRun, cand: np.ndarray, limits: AxisLimits, machine: MachineModel,
+                      blend_speed: FloatArray | None = None) -> np.ndarray:
+    """The candidates where a stop beats passing the blend arc, by the S-curve ramps of -O2.
+
+    Per side of the corner, over the half of the neighbouring piece: cruise at the speed
+    ``V`` that the half reaches from rest, then ramp to 0 at the corner (stop), or ramp to
+    the blend arc's speed ``w`` at the tangent point and cross half of the arc at ``w``
+    (round).  The times of both sides are compared (zero acceleration at the ramps'
+    ends, as :mod:`scurve` plans them)."""
+    from cncc.passes.planning.scurve import ramp_distance, ramp_time
+    from cncc.passes.planning.segments import piece_caps
+
+    v = np.flatnonzero(cand)
+    len_in, v_in, a_in, j_in = piece_caps(run, v - 1, limits, machine)
+    len_out, v_out, a_out, j_out = piece_caps(run, v, limits, machine)
+    u_in = (run.points[v] - run.points[v - 1]) / np.maximum(len_in, 1e-300)[:, None]
+    u_out = (run.points[v + 1] - run.points[v]) / np.maximum(len_out, 1e-300)[:, None]
+    cos_t = np.clip(np.einsum("ij,ij->i", u_in, u_out), -1.0, 1.0)
+    half = np.arccos(cos_t) / 2
+    tol = run.tol_mm[v - 1]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        d_tol = tol * np.tan(half) / (1.0 / np.cos(half) - 1.0)
+        d_t = np.minimum.reduce([np.nan_to_num(d_tol, nan=0.0, posinf=np.inf), len_in / 2, len_out / 2])
+        radius = np.nan_to_num(d_t / np.tan(half), nan=0.0, posinf=0.0)
+    e2 = u_out - cos_t[:, None] * u_in
+    e2 /= np.maximum(np.linalg.norm(e2, axis=1), 1e-300)[:, None]
+    a_min = path_limit(limits.amax_mm_s2, np.abs(u_in) + np.abs(e2))
+    w = np.sqrt(NORMAL_SHARE * a_min * radius)
+    if blend_speed is not None:
+        w = np.minimum(w, blend_speed[v])
+    arc_half = radius * half  # half of the arc (deflection 2 * half)
+    t_stop = np.zeros(v.size)
+    t_round = np.zeros(v.size)
+    for length, vcap, a_max, j_max in ((len_in, v_in, a_in, j_in), (len_out, v_out, a_out, j_out)):
+        x = length / 2
+        top = np.maximum(np.minimum(vcap, _reach_from_rest(x, a_max, j_max)), 1e-9)
+        wc = np.minimum(w, top)
+        t_stop += np.maximum(x - ramp_distance(top, 0 * top, a_max, j_max), 0.0) / top + ramp_time(top, 0 * top,
+                                                                                                   a_max, j_max)
+        straight = np.maximum(x - d_t - ramp_distance(top, wc, a_max, j_max), 0.0)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            t_round += straight / top + ramp_time(top, wc, a_max, j_max) + np.where(wc > 0, arc_half / wc, np.inf)
+    out = np.zeros(cand.size, bool)
+    out[v] = t_stop < t_round
+    return out
 
 
 def faster_stops(run: PathRun, cand: np.ndarray, limits: AxisLimits, machine: MachineModel) -> np.ndarray:

@@ -57,8 +57,13 @@ def crossing_times(ph: Phases, cuts: FloatArray) -> tuple[np.ndarray, FloatArray
 
 def split_at(ph: Phases, cuts: FloatArray) -> Phases:
     """Split phases where ``s`` crosses each value of ``cuts`` (sorted)."""
+    return split_owned(ph, cuts)[0]
+
+
+def split_owned(ph: Phases, cuts: FloatArray) -> tuple[Phases, np.ndarray]:
+    """:func:`split_at` and, for each new phase, the index of the phase it comes from."""
     if cuts.size == 0 or ph.t0.size == 0:
-        return ph
+        return ph, np.arange(ph.t0.size)
     s_end = ph.s0 + ph.v0 * ph.dur + ph.a0 * ph.dur**2 / 2 + ph.j * ph.dur**3 / 6
     idx = np.clip(np.searchsorted(s_end, cuts, side="left"), 0, ph.t0.size - 1)
     inside = (cuts > ph.s0[idx] + 1e-12) & (cuts < s_end[idx] - 1e-12)
@@ -71,7 +76,8 @@ def split_at(ph: Phases, cuts: FloatArray) -> Phases:
     end = ph.t0[-1] + ph.dur[-1]
     dur = np.diff(np.concatenate([starts, [end]]))
     keep = dur > 1e-13
-    return Phases(starts[keep], dur[keep], s[keep], v[keep], a[keep], ph.j[owner][keep], ph.limit[owner][keep])
+    return (Phases(starts[keep], dur[keep], s[keep], v[keep], a[keep], ph.j[owner][keep], ph.limit[owner][keep]),
+            owner[keep])
 
 
 def path_rows(seg: Segments, ph: Phases) -> Rows:
@@ -79,9 +85,12 @@ def path_rows(seg: Segments, ph: Phases) -> Rows:
     if ph.interval is not None and ph.interval.size == ph.t0.size:
         k = ph.interval
     else:
-        ph = split_at(ph, seg.s0[1:-1])
+        bounds = ph.segments
+        ph, owner = split_owned(ph, seg.s0[1:-1])
         s_mid, _, _ = eval_phase(ph, np.arange(ph.t0.size), ph.dur / 2)
         k = np.clip(np.searchsorted(seg.s0, s_mid, side="right") - 1, 0, seg.count - 1)
+        if bounds is not None:  # rounding may carry a phase a hair past its block's end
+            k = np.clip(k, bounds[0][owner], bounds[1][owner])
     u = seg.u[k]
     p0 = seg.p0[k] + u * (ph.s0 - seg.s0[k])[:, None]
     limit = np.where(ph.limit == Limit.NONE, seg.vlim[k], ph.limit).astype(np.int8)

@@ -32,6 +32,9 @@ MIN_FEED_MM_MIN = 0.1
 """Smallest feed the planners take (mm/min): below it the times are absurd and the
 floating-point error of hour-long phases reaches the verify tolerances."""
 
+CHORD_SAFETY = 0.8
+"""Share of the velocity-step budget a spaced arc chord's step may take."""
+
 NORMAL_SHARE = 0.5
 """Share of each axis' acceleration that velocity steps at chord vertices may use."""
 
@@ -188,7 +191,11 @@ def _arc_chord_max(cmd: Arc, feed_mm_s: float, machine: MachineModel, limits: Ax
     a_plane = float(min(limits.amax_mm_s2[f], limits.amax_mm_s2[s]))
     v = min(feed_mm_s, math.sqrt(NORMAL_SHARE * a_plane * max(radius, 1e-9)))
     t = machine.interpolation_period_s
-    return max(1.02 * v * t + 2.2 * t * t * a_plane, 1e-4)
+    # below the centripetal speed a longer chord keeps its vertex step v c / r within the
+    # velocity-step budget NORMAL_SHARE * a * T (the steps then no longer overlap): fewer
+    # chords for the same caps (equal to v T at the centripetal speed)
+    spaced = CHORD_SAFETY * NORMAL_SHARE * a_plane * t * max(radius, 1e-9) / max(v, 1e-9)
+    return max(1.02 * v * t + 2.2 * t * t * a_plane, spaced, 1e-4)
 
 
 def arc_points(cmd: Arc, sag_mm: float, chord_max_mm: float = math.inf) -> FloatArray:

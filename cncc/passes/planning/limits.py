@@ -28,7 +28,7 @@ class AxisLimits:
     start_mm_s: FloatArray  # SZGH take-off speed (0: none)
     step_mm_s: FloatArray  # SZGH per-axis speed step at corners (0: none)
     reversal_mm_s: FloatArray  # SZGH speed at an axis reversal (0: none)
-    step_rate_mm_s: FloatArray  # max step rate / steps per mm
+    step_rate_mm_s: FloatArray  # step output rate (max rate and pulse spacing) / steps per mm
 
 
 def axis_limits(machine: MachineModel) -> AxisLimits:
@@ -40,7 +40,7 @@ def axis_limits(machine: MachineModel) -> AxisLimits:
     def arr(get: str, scale: float = 1.0) -> FloatArray:
         return np.array([float(getattr(a, get)) * scale for a in axes])
 
-    step_rate = np.array([a.step.max_step_rate_hz / _steps_per_mm(a) for a in axes])
+    step_rate = np.array([output_rate_hz(a) / _steps_per_mm(a) for a in axes])
     return AxisLimits(
         present=present,
         vmax_mm_s=np.minimum(arr("max_velocity_mm_min", 1 / 60), step_rate),
@@ -52,6 +52,16 @@ def axis_limits(machine: MachineModel) -> AxisLimits:
         reversal_mm_s=arr("reversal_speed_mm_min", 1 / 60),
         step_rate_mm_s=step_rate,
     )
+
+
+def output_rate_hz(axis: Axis) -> float:
+    """Highest step rate the axis' output can emit: its maximum rate and its minimum pulse
+    spacing (pulse high plus as long low, ``2 * pulse_width_ns``, with 2 ns for the
+    rounding of step times to whole nanoseconds)."""
+    rate = axis.step.max_step_rate_hz
+    if axis.step.pulse_width_ns > 0:
+        rate = min(rate, 1e9 / (2 * axis.step.pulse_width_ns + 2))
+    return rate
 
 
 def _steps_per_mm(axis: Axis) -> float:

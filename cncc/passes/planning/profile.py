@@ -34,6 +34,7 @@ class Phases:
     j: FloatArray
     limit: np.ndarray  # int8, the Limit of each phase
     interval: np.ndarray | None = None  # index of the interval of each phase, when known
+    segments: tuple[np.ndarray, np.ndarray] | None = None  # first and last segment each phase may cover
 
     @property
     def end_time(self) -> float:

@@ -38,6 +38,7 @@ class Segments:
     jcap: FloatArray  # (k,) mm/s^3
     vvert: FloatArray  # (k+1,)
     vorigin: np.ndarray | None = None  # (k+1,) unrounded run point of each vertex
+    smooth: np.ndarray | None = None  # (k+1,) bool, vertex inside an arc or a blend (chords of one curve)
 
     @property
     def count(self) -> int:
@@ -73,7 +74,8 @@ def make_segments(run: PathRun, limits: AxisLimits, machine: MachineModel) -> Se
     vpoint = np.concatenate([idx, idx[-1:] + 1])
     vorigin = vpoint if run.origin is None else run.origin[vpoint]
     return Segments(p0, u, length, s0, run.cmd[idx], vcap, vlim.astype(np.int8),
-                    path_limit(limits.amax_mm_s2, u), path_limit(limits.jmax_mm_s3, u), vvert, vorigin)
+                    path_limit(limits.amax_mm_s2, u), path_limit(limits.jmax_mm_s3, u), vvert, vorigin,
+                    run.arc_vertex[vpoint])
 
 
 def junction_deviation(seg: Segments, limits: AxisLimits, deviation_mm: float) -> FloatArray:
@@ -131,7 +133,8 @@ def split_at_stops(seg: Segments) -> list[Segments]:
         parts.append(replace(seg, p0=seg.p0[a:b], u=seg.u[a:b], length=seg.length[a:b],
                              s0=seg.s0[a:b + 1] - seg.s0[a], cmd=seg.cmd[a:b], vcap=seg.vcap[a:b],
                              vlim=seg.vlim[a:b], acap=seg.acap[a:b], jcap=seg.jcap[a:b], vvert=vv,
-                             vorigin=None if seg.vorigin is None else seg.vorigin[a:b + 1]))
+                             vorigin=None if seg.vorigin is None else seg.vorigin[a:b + 1],
+                             smooth=None if seg.smooth is None else seg.smooth[a:b + 1]))
     return parts
 
 

@@ -1,0 +1,273 @@
+"""-O2 path profile in closed form: blocks of segments, jerk-limited S-curves, linear cost.
+
+Consumes the :class:`Segments` of a part (rest to rest, vertex caps filled); produces
+constant-jerk :class:`Phases` on the path coordinate, at most seven per block.
+
+1. *Blocks.*  Consecutive segments whose speed, acceleration and jerk caps (vertex caps
+   included) stay within :data:`CAP_BAND` of each other form one block (the chords of an
+   arc, a smooth polyline); a vertex whose cap is below its neighbours' (a corner) or
+   where the caps change ends a block.  A block is planned as one straight move of its
+   total length under the minimum of its caps.
+2. *Boundary speeds.*  The acceleration is zero at every block boundary, so the distance
+   of a speed change ``v0 -> v1`` is ``(v0 + v1) / 2 * T`` with ``T = 2 sqrt(dv / J)``
+   (``dv < A^2 / J``) or ``dv / A + A / J``; its inverse :func:`reach` is a cubic or a
+   quadratic in closed form.  One backward and one forward pass over the blocks give
+   the largest boundary speeds that every block can join (``O(blocks)``).
+3. *Profiles.*  Each block accelerates to a peak, cruises and decelerates: the peak is
+   the largest speed within the block's cap whose two ramps fit its length (vectorised
+   bisection over all blocks at once), the cruise takes the rest, so the distance is
+   exact.  A ramp is the time-optimal jerk-limited change of speed between zero
+   accelerations (two or three constant-jerk phases): the profile is continuous in
+   position, speed and acceleration, and within the speed, acceleration and jerk caps of
+   every segment of the block.  For one move this is the 7-phase S-curve
+   (``L/v + v/A + A/J``), which is ruckig's time-optimal rest-to-rest profile.
+
+The cost is a few numpy passes over the segments plus a Python loop of a few
+microseconds per block; nothing depends on the planned time or on repeated re-plans.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from cncc.ir.trajectory import FloatArray, Limit
+from cncc.passes.planning.profile import Phases
+from cncc.passes.planning.segments import Segments
+
+CAP_BAND = 0.1
+"""Speed caps within this share of each other are one block (planned at their minimum)."""
+
+ACCEL_BAND = 0.5
+"""Acceleration and jerk caps within this share of each other are one block (a curve's
+path caps change with its direction, by up to 1 - 1/sqrt(2) on a circle in XY)."""
+
+BISECT_STEPS = 60
+
+
+def ramp_time(v0: FloatArray, v1: FloatArray, a_max: FloatArray, j_max: FloatArray) -> FloatArray:
+    """Time of the fastest change of speed ``v0 -> v1`` that starts and ends at zero acceleration."""
+    dv = np.abs(v1 - v0)
+    knee = a_max * a_max / j_max
+    out: FloatArray = np.where(dv >= knee, dv / a_max + a_max / j_max, 2.0 * np.sqrt(dv / j_max))
+    return out
+
+
+def ramp_distance(v0: FloatArray, v1: FloatArray, a_max: FloatArray, j_max: FloatArray) -> FloatArray:
+    out: FloatArray = (v0 + v1) / 2 * ramp_time(v0, v1, a_max, j_max)
+    return out
+
+
+def reach(v0: float, length: float, a_max: float, j_max: float) -> float:
+    """The largest ``v1 >= v0`` that a ramp from ``v0`` reaches within ``length``."""
+    if length <= 0.0:
+        return v0
+    tj = a_max / j_max
+    knee = a_max * tj
+    if length >= (2 * v0 + knee) * tj:
+        # dv^2 / (2A) + dv (v0 / A + A / (2J)) + (v0 A / J - L) = 0
+        b = v0 / a_max + tj / 2
+        c = v0 * tj - length
+        return v0 + -2 * c / (b + math.sqrt(b * b - 2 * c / a_max))
+    # x = sqrt(dv): x^3 + 2 v0 x - L sqrt(J) = 0 (one real root, Cardano, one Newton step)
+    p, q = 2 * v0, length * math.sqrt(j_max)
+    disc = math.sqrt(q * q / 4 + p * p * p / 27)
+    w = (q / 2 + disc) ** (1 / 3)
+    x = w - p / (3 * w) if w > 0 else 0.0
+    if p > 1e3 * q ** (2 / 3):  # cancellation: x ~ q / p
+        x = q / p
+    for _ in range(2):
+        f = x * x * x + p * x - q
+        x -= f / (3 * x * x + p)
+    return v0 + max(x, 0.0) ** 2
+
+
+def blocks(seg: Segments) -> np.ndarray:
+    """Start segment of every block, ``(b,)`` ascending, starting with 0.
+
+    A vertex inside an arc or a blend (the chords of one curve), or whose cap does not
+    bind, joins its two segments; a binding vertex (a corner) ends a block.  Within the
+    joined runs a block also ends where the segments' caps (with the caps of the joining
+    vertices) leave the band :data:`CAP_BAND` of the block's running minimum.
+    """
+    k = seg.count
+    if k == 1:
+        return np.zeros(1, np.int64)
+    band, a_band = 1 - CAP_BAND, 1 - ACCEL_BAND
+    inner = seg.vvert[1:-1]
+    near = np.minimum(seg.vcap[:-1], seg.vcap[1:])
+    smooth = seg.smooth[1:-1] if seg.smooth is not None else np.zeros(k - 1, bool)
+    soft = (smooth | (inner >= band * near)) & (inner > 0.0)  # a stop always ends a block
+    # cap of each segment with its soft vertices
+    left = np.concatenate([[np.inf], np.where(soft, inner, np.inf)])
+    right = np.concatenate([np.where(soft, inner, np.inf), [np.inf]])
+    cap = np.minimum(seg.vcap, np.minimum(left, right))
+    starts = [0]
+    hard_l = (~soft).tolist()
+    cap_l, acap_l, jcap_l = cap.tolist(), seg.acap.tolist(), seg.jcap.tolist()
+    lo_v, ac, jc = cap_l[0], acap_l[0], jcap_l[0]
+    for m in range(1, k):
+        z, a, j = cap_l[m], acap_l[m], jcap_l[m]
+        if (hard_l[m - 1] or z < band * lo_v or z * band > lo_v or a < a_band * ac or a * a_band > ac
+                or j < a_band * jc or j * a_band > jc):
+            starts.append(m)
+            lo_v, ac, jc = z, a, j
+        else:
+            lo_v, ac, jc = min(lo_v, z), min(ac, a), min(jc, j)
+    return np.array(starts, np.int64)
+
+
+def block_caps(seg: Segments, starts: np.ndarray, raw_acap: FloatArray | None = None
+               ) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray, FloatArray]:
+    """Length, speed, acceleration and jerk caps of each block, and the caps at the boundaries.
+
+    ``seg.acap`` leaves the velocity steps at the vertices their share of the axis
+    acceleration; a block of one segment has no vertex inside and its acceleration is
+    zero at both ends, where the neighbouring steps happen, so it gets ``raw_acap``."""
+    ends = np.append(starts[1:], seg.count)
+    length = seg.s0[ends] - seg.s0[starts]
+    vmin = np.minimum.reduceat(seg.vcap, starts)
+    inner = np.concatenate([[np.inf], seg.vvert[1:-1], [np.inf]])  # inner[m]: vertex m (m=0..k)
+    inside = np.where(ends - starts > 1, _inside_min(inner, starts), np.inf)
+    vcap = np.minimum(vmin, inside)
+    acap = np.minimum.reduceat(seg.acap, starts)
+    if raw_acap is not None:
+        acap = np.where(ends - starts == 1, raw_acap[starts], acap)
+    jcap = np.minimum.reduceat(seg.jcap, starts)
+    wcap = seg.vvert[np.append(starts, seg.count)].copy()
+    return length, vcap, acap, jcap, wcap
+
+
+def _inside_min(inner: FloatArray, starts: np.ndarray) -> FloatArray:
+    """Minimum of ``inner[start + 1 .. end - 1]`` per block (blocks of at least two segments)."""
+    vals = inner[1:-1]  # vertex 1 .. k-1
+    # vertex m is inside the block whose start < m < end
+    owner = np.searchsorted(starts, np.arange(1, vals.size + 1), side="right") - 1
+    is_inside = np.arange(1, vals.size + 1) != starts[owner]
+    out = np.full(starts.size, np.inf)
+    np.minimum.at(out, owner[is_inside], vals[is_inside])
+    return out
+
+
+def boundary_speeds(length: FloatArray, vcap: FloatArray, acap: FloatArray, jcap: FloatArray,
+                    wcap: FloatArray) -> FloatArray:
+    """Largest speeds at the block boundaries (acceleration zero there) that every block joins."""
+    nb = length.size
+    cap = np.minimum(wcap, np.minimum(np.concatenate([[np.inf], vcap]), np.concatenate([vcap, [np.inf]])))
+    w = cap.tolist()
+    ln, ac, jc = length.tolist(), acap.tolist(), jcap.tolist()
+    for i in range(nb - 1, -1, -1):
+        r = reach(w[i + 1], ln[i], ac[i], jc[i])
+        if r < w[i]:
+            w[i] = r
+    for i in range(nb):
+        r = reach(w[i], ln[i], ac[i], jc[i])
+        if r < w[i + 1]:
+            w[i + 1] = r
+    out: FloatArray = np.maximum(np.array(w, float), 0.0)
+    return out
+
+
+def _peak(vs: FloatArray, ve: FloatArray, length: FloatArray, vcap: FloatArray, acap: FloatArray,
+          jcap: FloatArray) -> FloatArray:
+    """Largest peak in ``[max(vs, ve), vcap]`` whose two ramps fit ``length``."""
+    lo = np.maximum(vs, ve)
+    hi = np.maximum(vcap, lo)
+
+    def fits(vp: FloatArray) -> np.ndarray:
+        return np.asarray(ramp_distance(vs, vp, acap, jcap) + ramp_distance(vp, ve, acap, jcap) <= length)
+
+    top = fits(hi)
+    lo = np.where(top, hi, lo)
+    for _ in range(BISECT_STEPS):
+        mid = (lo + hi) / 2
+        good = fits(mid) & ~top
+        lo = np.where(good, mid, lo)
+        hi = np.where(good | top, hi, mid)
+    return lo
+
+
+def _ramp_phases(v0: FloatArray, v1: FloatArray, a_max: FloatArray, j_max: FloatArray
+                 ) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """Durations ``(b, 3)``, start accelerations and jerks of the ramps' three phases."""
+    dv = v1 - v0
+    sign = np.sign(dv)
+    mag = np.abs(dv)
+    knee = a_max * a_max / j_max
+    full = mag >= knee
+    tj = np.where(full, a_max / j_max, np.sqrt(mag / j_max))
+    ta = np.where(full, mag / a_max - a_max / j_max, 0.0)
+    peak = sign * j_max * tj
+    dur = np.stack([tj, ta, tj], axis=1)
+    acc = np.stack([np.zeros_like(dv), peak, peak], axis=1)
+    jerk = np.stack([sign * j_max, np.zeros_like(dv), -sign * j_max], axis=1)
+    return dur, acc, jerk
+
+
+def step_accel_caps(seg: Segments, jmax_mm_s3: FloatArray, period_s: float) -> FloatArray:
+    """Path acceleration at each interior vertex whose per-axis step ``a |du_i|`` the
+    controller spreads over one period within the jerk limit: ``min_i j_i T / |du_i|``."""
+    du = np.abs(seg.u[1:] - seg.u[:-1])
+    with np.errstate(divide="ignore"):
+        out: FloatArray = np.where(du > 1e-12, jmax_mm_s3[None, :] * period_s / np.maximum(du, 1e-300),
+                                   np.inf).min(axis=1, initial=np.inf)
+    return out
+
+
+def scurve_profile(seg: Segments, raw_acap: FloatArray | None = None, jmax_mm_s3: FloatArray | None = None,
+                   period_s: float = 0.0) -> Phases:
+    """The -O2 profile of one part (rest to rest); see the module docstring and :func:`block_caps`.
+
+    With the per-axis jerk limits and the interpolation period, a block's acceleration is
+    also capped at its interior vertices by :func:`step_accel_caps` (the acceleration
+    changes direction there; at block boundaries it is zero)."""
+    starts = blocks(seg)
+    length, vcap, acap, jcap, wcap = block_caps(seg, starts, raw_acap)
+    if jmax_mm_s3 is not None and period_s > 0 and seg.count > 1:
+        caps = step_accel_caps(seg, jmax_mm_s3, period_s)  # vertex m = 1..k-1 at index m - 1
+        owner = np.searchsorted(starts, np.arange(1, seg.count), side="right") - 1
+        inside = np.arange(1, seg.count) != starts[owner]
+        vertex_cap = np.full(starts.size, np.inf)
+        np.minimum.at(vertex_cap, owner[inside], caps[inside])
+        acap = np.minimum(acap, vertex_cap)
+    w = boundary_speeds(length, vcap, acap, jcap, wcap)
+    vs, ve = w[:-1], w[1:]
+    vp = _peak(vs, ve, length, vcap, acap, jcap)
+    d_up, a_up, j_up = _ramp_phases(vs, vp, acap, jcap)
+    d_dn, a_dn, j_dn = _ramp_phases(vp, ve, acap, jcap)
+    cruise_len = np.maximum(length - ramp_distance(vs, vp, acap, jcap) - ramp_distance(vp, ve, acap, jcap), 0.0)
+    t_cru = np.where(vp > 0, cruise_len / np.maximum(vp, 1e-300), 0.0)
+    nb = length.size
+    dur = np.concatenate([d_up, t_cru[:, None], d_dn], axis=1)  # (b, 7)
+    acc = np.concatenate([a_up, np.zeros((nb, 1)), a_dn], axis=1)
+    jerk = np.concatenate([j_up, np.zeros((nb, 1)), j_dn], axis=1)
+    # speeds at the phase starts from the ramps' closed forms
+    v_ph = np.empty((nb, 7))
+    v_ph[:, 0] = vs
+    for c in range(1, 7):
+        v_ph[:, c] = v_ph[:, c - 1] + acc[:, c - 1] * dur[:, c - 1] + jerk[:, c - 1] * dur[:, c - 1] ** 2 / 2
+    v_ph[:, 3] = vp
+    v_ph[:, 4] = vp
+    ds = v_ph * dur + acc * dur**2 / 2 + jerk * dur**3 / 6
+    s_start = seg.s0[starts]
+    s_ph = s_start[:, None] + np.concatenate([np.zeros((nb, 1)), np.cumsum(ds, axis=1)[:, :-1]], axis=1)
+    cruise_lim = _block_limit(seg, starts, vcap)
+    lim = np.full((nb, 7), int(Limit.JERK), np.int8)
+    lim[:, 1] = lim[:, 5] = int(Limit.ACCEL)
+    lim[:, 3] = cruise_lim
+    flat = dur.reshape(-1)
+    keep = flat > 1e-13
+    dur_k = flat[keep]
+    t0 = np.concatenate([[0.0], np.cumsum(dur_k)[:-1]])
+    first = np.repeat(starts, 7)[keep]
+    last = np.repeat(np.append(starts[1:], seg.count) - 1, 7)[keep]
+    return Phases(t0, dur_k, s_ph.reshape(-1)[keep], v_ph.reshape(-1)[keep], acc.reshape(-1)[keep],
+                  jerk.reshape(-1)[keep], lim.reshape(-1)[keep], segments=(first, last))
+
+
+def _block_limit(seg: Segments, starts: np.ndarray, vcap: FloatArray) -> np.ndarray:
+    """What limits each block's cruise: the segment's own limit, or a corner/curvature cap."""
+    seg_min = np.minimum.reduceat(seg.vcap, starts)
+    own = seg.vlim[starts]
+    return np.where(vcap < seg_min * (1 - 1e-9), int(Limit.CENTRIPETAL), own).astype(np.int8)

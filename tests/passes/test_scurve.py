@@ -1,0 +1,141 @@
+"""The closed-form S-curve of -O2 (planning/scurve.py) against ruckig and its own formulas."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from cncc.passes.planning import scurve
+
+
+def _ruckig_time(v0: float, v1: float, dist: float, v_max: float, a_max: float, j_max: float) -> float:
+    from ruckig import InputParameter, Result, Ruckig, Trajectory
+
+    otg, inp, traj = Ruckig(1), InputParameter(1), Trajectory(1)
+    inp.current_position, inp.current_velocity, inp.current_acceleration = [0.0], [v0], [0.0]
+    inp.target_position, inp.target_velocity, inp.target_acceleration = [dist], [v1], [0.0]
+    inp.max_velocity, inp.max_acceleration, inp.max_jerk = [v_max], [a_max], [j_max]
+    assert otg.calculate(inp, traj) in (Result.Working, Result.Finished)
+    return float(traj.duration)
+
+
+@pytest.mark.parametrize(("v0", "v1", "a_max", "j_max"), [
+    (0.0, 50.0, 1500.0, 50000.0),  # reaches A (three phases)
+    (0.0, 10.0, 1500.0, 50000.0),  # does not reach A (two phases)
+    (40.0, 3.0, 800.0, 30000.0),  # braking
+    (5.0, 5.0, 1500.0, 50000.0),  # no change
+])
+def test_ramp_is_rucking_time_optimal_between_zero_accelerations(v0: float, v1: float, a_max: float,
+                                                                  j_max: float) -> None:
+    # ruckig from (0, v0, 0) to (d, v1, 0) with d the ramp's own distance: nothing faster exists
+    d = float(scurve.ramp_distance(np.array(v0), np.array(v1), np.array(a_max), np.array(j_max)))
+    t = float(scurve.ramp_time(np.array(v0), np.array(v1), np.array(a_max), np.array(j_max)))
+    if v0 == v1:
+        assert t == 0.0
+        return
+    assert t == pytest.approx(_ruckig_time(v0, v1, d, max(v0, v1) * 1.5, a_max, j_max), rel=1e-6)
+
+
+@pytest.mark.parametrize(("v0", "length"), [(0.0, 0.001), (0.0, 3.0), (12.0, 0.01), (30.0, 5.0), (200.0, 1e-4)])
+def test_reach_inverts_the_ramp_distance(v0: float, length: float) -> None:
+    a_max, j_max = 1500.0, 50000.0
+    v1 = scurve.reach(v0, length, a_max, j_max)
+    d = float(scurve.ramp_distance(np.array(v0), np.array(v1), np.array(a_max), np.array(j_max)))
+    assert d == pytest.approx(length, rel=1e-6)  # v1 - v0 loses digits when dv << v0
+
+
+@pytest.mark.parametrize(("length", "v_max"), [(50.0, 50.0), (0.5, 50.0), (0.002, 50.0), (20.0, 166.0)])
+def test_single_move_matches_ruckig_rest_to_rest(length: float, v_max: float) -> None:
+    from cncc.passes.planning.segments import Segments
+
+    a_max, j_max = 1500.0, 50000.0
+    u = np.zeros((1, 6))
+    u[0, 0] = 1.0
+    seg = Segments(np.zeros((1, 6)), u, np.array([length]), np.array([0.0, length]), np.zeros(1, np.int64),
+                   np.array([v_max]), np.zeros(1, np.int8), np.array([a_max]), np.array([j_max]),
+                   np.array([0.0, 0.0]))
+    ph = scurve.scurve_profile(seg)
+    assert ph.end_time == pytest.approx(_ruckig_time(0.0, 0.0, length, v_max, a_max, j_max), rel=1e-6)
+    assert ph.dur.size <= 7
+    # continuity of s, v, a at every join and the end at rest at ``length``
+    d = ph.dur
+    s1 = ph.s0 + ph.v0 * d + ph.a0 * d**2 / 2 + ph.j * d**3 / 6
+    v1 = ph.v0 + ph.a0 * d + ph.j * d**2 / 2
+    a1 = ph.a0 + ph.j * d
+    assert np.allclose(s1[:-1], ph.s0[1:], atol=1e-12) and s1[-1] == pytest.approx(length, rel=1e-12)
+    assert np.allclose(v1[:-1], ph.v0[1:], atol=1e-9) and abs(v1[-1]) < 1e-9
+    assert np.allclose(a1[:-1], ph.a0[1:], atol=1e-7) and abs(a1[-1]) < 1e-7
+    assert np.all(np.abs(ph.a0) <= a_max * (1 + 1e-12)) and np.all(np.abs(ph.j) <= j_max)
+    assert v1.max() <= v_max * (1 + 1e-12)
+    if length == 50.0:  # the closed form L/v + v/A + A/J
+        assert ph.end_time == pytest.approx(length / v_max + v_max / a_max + a_max / j_max, rel=1e-12)
+    if length == 0.002:  # too short to reach A: 4 (L / 2J)^(1/3)
+        assert ph.end_time == pytest.approx(4 * (length / (2 * j_max)) ** (1 / 3), rel=1e-9)
+    assert math.isfinite(ph.end_time)
+
+
+def test_phase_info_looks_up_command_and_limit_by_time() -> None:
+    from cncc.ir.trajectory import Limit
+    from cncc.machines import load_machine
+    from cncc.passes.plan import plan_commands
+    from tests.passes._motion import line
+
+    cmds = [line((10, 10), (40, 10), 3000), line((40, 10), (40, 40), 600)]
+    traj = plan_commands(cmds, load_machine("generic-mill"), 2)
+    mid = traj.t0_s + traj.duration_s / 2
+    cmd, lim = traj.phase_info(mid)
+    assert cmd.tolist() == traj.cmd_index.tolist() and lim.tolist() == traj.limit.tolist()
+    cmd_end, _ = traj.phase_info(np.array([traj.duration_total_s + 1.0]))
+    assert cmd_end.tolist() == [1]
+    assert int(Limit.FEED) in lim.tolist()
+
+
+def test_tiny_zigzag_is_smoothed_within_tolerance() -> None:
+    # 1000 moves of 0.01 mm zig-zagging by 2 um (issue 26): within the 0.01 mm blend
+    # tolerance they are one straight 10 mm move; its ramps do not reach A (v/A < A/J),
+    # each lasts 2 sqrt(v/J) and covers v sqrt(v/J), so the S-curve takes L/v + 2 sqrt(v/J)
+    from cncc.diagnostics import DiagnosticSink
+    from cncc.machines import effective_corner_rule, load_machine
+    from cncc.passes.plan import plan_commands
+    from cncc.passes.verify import verify_trajectory
+    from tests.passes._motion import polyline
+
+    machine = load_machine("generic-mill")
+    pts = [(20 + 0.01 * i, 20 + 0.002 * (i % 2)) for i in range(1001)]
+    cmds = polyline(pts, 2000)
+    traj = plan_commands(cmds, machine, 2)
+    sink = DiagnosticSink()
+    report = verify_trajectory(traj, cmds, machine, sink, corner_rule=effective_corner_rule(machine, 2),
+                               check_dynamics=True, jerk_limited=True)
+    assert report.count == 0, [d.message for d in sink]
+    length = math.hypot(10.0, 0.0)  # end points (20, 20) and (30, 20)
+    v, a, j = 2000 / 60, 1500.0, 50000.0
+    assert v / a < a / j
+    straight = length / v + 2 * math.sqrt(v / j)
+    assert straight * (1 - 1e-9) <= traj.duration_total_s <= 1.02 * straight
+    # every sampled point within the tolerance of the zig-zag (its two lines y = 20 and 20.002)
+    p, _, _, _ = traj.sample(np.linspace(0, traj.duration_total_s, 5001))
+    assert np.all(p[:, 1] >= 20 - machine.blend_tolerance_mm)
+    assert np.all(p[:, 1] <= 20.002 + machine.blend_tolerance_mm)
+
+
+def test_planning_bar_on_a_terminal_only_and_not_with_quiet() -> None:
+    import io
+
+    from cncc.backends.timing.progress import PLAN_MIN_ITEMS, planning_bar
+
+    class Tty(io.StringIO):
+        def isatty(self) -> bool:
+            return True
+
+    for stream, quiet, drawn in ((Tty(), False, True), (Tty(), True, False), (io.StringIO(), False, False)):
+        with planning_bar("planning -O2", PLAN_MIN_ITEMS, quiet, stream) as update:
+            for k in range(0, PLAN_MIN_ITEMS + 1, PLAN_MIN_ITEMS // 4):
+                update(k)
+        assert (len(stream.getvalue()) > 0) is drawn
+    small = Tty()
+    with planning_bar("planning -O2", PLAN_MIN_ITEMS - 1, False, small) as update:
+        update(1)
+    assert small.getvalue() == ""
