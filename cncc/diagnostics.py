@@ -228,6 +228,13 @@ BAD_OPTION = _define("E0904", E, "a command-line option has a bad value")
 WERROR = _define("E0905", E, "a warning turned into an error by -Werror")
 OUTPUT_IS_INPUT = _define("E0906", E, "the output file would overwrite an input file")
 
+# --- E0995-E0999: program libraries (cncc batch) ---------------------------------
+BATCH_NO_PROGRAMS = _define("E0995", E, "batch: no program file matches the given folders and patterns")
+BATCH_TIME_LIMIT = _define("E0996", E, "batch: a program ran over its time limit")
+BATCH_MEMORY_LIMIT = _define("E0997", E, "batch: a program ran over its memory limit")
+BATCH_CRASH = _define("E0998", E, "batch: the compiler crashed on a program, or its process died")
+BATCH_RESULTS = _define("E0999", E, "batch: the results file or the cluster cannot be used")
+
 
 @dataclass(frozen=True, slots=True)
 class Related:
