@@ -23,6 +23,7 @@ SCRIPTS = [
     ("planner.py", [], ["--quick"]),
     ("pulses.py", ["--steps", "100000000"], ["--steps", "2000000", "--repeat", "1"]),
     ("lsp.py", [], ["--lines", "2000", "--edits", "3"]),
+    ("batch.py", [], ["--quick"]),
 ]
 
 

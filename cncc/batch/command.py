@@ -35,7 +35,8 @@ def parser() -> argparse.ArgumentParser:
                     help=f"address space of a compiling process (default {DEFAULT_MEMORY_LIMIT_MB}; 0: none)")
     ap.add_argument("--max-steps", type=int, default=5_000_000, metavar="N",
                     help="macro steps per program before E0301 (default 5000000)")
-    ap.add_argument("--offsets", metavar="FILE", help="work offsets (TOML): the soft limits are checked with them")
+    ap.add_argument("--offsets", action="append", default=[], metavar="[MACHINE=]FILE",
+                    help="work offsets (TOML) for every machine or for one; the soft limits are checked with them")
     ap.add_argument("--strict", action="store_true", help="as cncc --strict")
     return ap
 
@@ -63,15 +64,19 @@ def main(argv: Sequence[str]) -> int:
         sink.emit(dg.BAD_OPTION, NO_SPAN, "-j takes a count of 1 or more")
     for d in sink:
         return fail(d.code, d.message)
-    offsets = None
-    if ns.offsets:
+    offsets: dict[str | None, str] = {}
+    for item in ns.offsets:
+        machine, sep, path = item.rpartition("=")
+        if sep and machine not in machines:
+            return fail(dg.BAD_OPTION, f"--offsets {item}: {machine} is not one of the -m machines")
         try:
-            with open(ns.offsets, encoding="utf-8") as fh:
-                offsets = fh.read()
+            with open(path, encoding="utf-8") as fh:
+                offsets[machine or None] = fh.read()
         except OSError as exc:
-            return fail(dg.CANNOT_READ, f"cannot read {ns.offsets}: {exc.strerror or exc}")
-    options = RowOptions(emit=ns.emit, opt_level=ns.opt_level, max_steps=ns.max_steps, time_limit_s=ns.time_limit,
-                         memory_limit_mb=ns.memory_limit, offsets_text=offsets, strict=ns.strict)
+            return fail(dg.CANNOT_READ, f"cannot read {path}: {exc.strerror or exc}")
+    options = {m: RowOptions(emit=ns.emit, opt_level=ns.opt_level, max_steps=ns.max_steps,
+                             time_limit_s=ns.time_limit, memory_limit_mb=ns.memory_limit,
+                             offsets_text=offsets.get(m, offsets.get(None)), strict=ns.strict) for m in machines}
     try:
         format_of(ns.output)
         client = None

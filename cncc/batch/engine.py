@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from collections.abc import Iterator, Sequence
+from collections.abc import Iterator, Mapping, Sequence
 from typing import Any, TextIO
 
 from cncc.batch.options import RowOptions, Task
@@ -73,12 +73,14 @@ def run_tasks(tasks: Sequence[Task], output: str, *, jobs: int = 1, client: Any 
     return summary
 
 
-def run_batch(inputs: Sequence[str], machines: Sequence[str], output: str, *, options: RowOptions | None = None,
+def run_batch(inputs: Sequence[str], machines: Sequence[str], output: str, *,
+              options: RowOptions | Mapping[str, RowOptions] | None = None,
               dialect: str | None = None, jobs: int = 1, client: Any = None, stream: TextIO | None = None,
               live: bool | None = None) -> Summary:
     """The Python API: ``inputs`` (folders, glob patterns, files) x ``machines`` -> rows in ``output``.
 
-    ``client``: a ``dask.distributed.Client`` to run on its cluster; otherwise ``jobs``
+    ``options``: for every machine, or a mapping machine name -> options (the work offsets of
+    each machine).  ``client``: a ``dask.distributed.Client`` to run on its cluster; otherwise ``jobs``
     local worker processes.  Raises :class:`cncc.batch.results.ResultsError` when the
     results file cannot be used, :class:`LookupError` when no program matches.
     """

@@ -5,7 +5,7 @@ from __future__ import annotations
 import glob
 import os
 import re
-from collections.abc import Iterator, Sequence
+from collections.abc import Iterator, Mapping, Sequence
 
 from cncc.batch.options import RowOptions, Task
 
@@ -52,9 +52,10 @@ def read_program(path: str) -> str:
         return decode(fh.read())
 
 
-def make_tasks(paths: Sequence[str], machines: Sequence[str], options: RowOptions,
+def make_tasks(paths: Sequence[str], machines: Sequence[str], options: RowOptions | Mapping[str, RowOptions],
                dialect: str | None = None) -> Iterator[Task]:
-    """One task per program and machine; ``dialect`` None: guessed per program (as the driver does)."""
+    """One task per program and machine; ``options`` per machine name or for all; ``dialect`` None:
+    guessed per program (as the driver does)."""
     from cncc.frontend.detect import guess_dialect
 
     for path in paths:
@@ -66,4 +67,5 @@ def make_tasks(paths: Sequence[str], machines: Sequence[str], options: RowOption
         name, how = (dialect, "given") if dialect else (guess_dialect(path, text)[0], "guessed")
         include = (os.path.dirname(os.path.abspath(path)),)
         for m in machines:
-            yield Task(path, text, m, options, name, how, include, problem)
+            opts = options if isinstance(options, RowOptions) else options[m]
+            yield Task(path, text, m, opts, name, how, include, problem)

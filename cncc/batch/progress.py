@@ -33,9 +33,14 @@ class Summary:
         statuses = ", ".join(f"{n} {s}" for s, n in sorted(self.by_status.items())) or "none"
         rate = f", {self.rows / self.wall_s:.1f} rows/s" if self.wall_s > 0 and self.rows else ""
         head = "cncc batch: interrupted" if self.interrupted else "cncc batch"
-        return [f"{head}: {self.programs} programs x {self.machines} machines; {self.rows} rows written "
+        return [f"{head}: {_n(self.programs, 'program')} x {_n(self.machines, 'machine')}; "
+                f"{_n(self.rows, 'row')} written "
                 f"({statuses}), {self.skipped} already in the results file",
                 f"cncc batch: {self.cpu_s:.1f} s CPU in the compilers, {self.wall_s:.1f} s wall{rate}"]
+
+
+def _n(count: int, what: str) -> str:
+    return f"{count} {what}{'' if count == 1 else 's'}"
 
 
 class Reporter:

@@ -224,3 +224,16 @@ def test_an_exception_in_the_compiler_gives_a_crash_row(monkeypatch: pytest.Monk
     monkeypatch.setattr(sb, "program_row", broken)
     r, restart = sb.compute(Task("p.nc", SHAPE, "generic-mill"), set())
     assert restart and r["status"] == "crash" and "ZeroDivisionError: a bug" in str(r["reason"])
+
+
+def test_offsets_per_machine(tmp_path: Path) -> None:
+    # generic-mill with examples/offsets.toml: X400 is machine X650, past its X end at 600;
+    # syntec-900m has no offsets here, so its soft limits are not checked.
+    (tmp_path / "p.nc").write_text("G90 G54 G00 X0. Y0. Z5.\nG01 X400. F3000.\nX0.\nM30\n")
+    out = tmp_path / "r.jsonl"
+    args = [str(tmp_path / "p.nc"), "-m", "generic-mill", "-m", "syntec-900m", "-O1",
+            "--offsets", f"generic-mill={ROOT / 'examples' / 'offsets.toml'}", "-o", str(out)]
+    assert batch_main(args) == 0
+    rows = {r["machine"]: r for r in map(json.loads, out.read_text().splitlines())}
+    assert rows["generic-mill"]["soft_limit_violations"] > 0 and rows["syntec-900m"]["soft_limit_violations"] == 0
+    assert batch_main([*args[:-2], "--offsets", "other=x.toml", "-o", str(out)]) == 1

@@ -1,0 +1,85 @@
+"""cncc batch benchmark: programs per second for -j 1, -j 2 and a 2-worker Dask LocalCluster.
+
+Run: ``python bench/batch.py [--programs N] [-O LEVEL] [--quick]``.  One generated
+library (bench/gen.py ``write_library``: several dialects, some with errors, no endless
+loop) is run three times into fresh results files; each run includes starting its
+sandbox children, the cluster's start is not counted (it is up before the clock).
+Prints the machine load, then per mode: wall seconds, programs per second, the ratio
+to -j 1, and the overhead per program: (workers x wall - compiler CPU) / programs,
+i.e. what each program costs beyond its own compile (dispatch, pipes, the sandbox
+start, the scheduler).  The compiler CPU is the sum of the rows' ``cpu_s``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+import tempfile
+import time
+from pathlib import Path
+from typing import Any
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+sys.path.insert(0, str(ROOT / "bench"))
+
+from gen import write_library  # noqa: E402
+
+from cncc.batch import RowOptions, run_batch  # noqa: E402
+from cncc.batch.results import read_rows  # noqa: E402
+
+
+def load() -> str:
+    one, five, _ = os.getloadavg()
+    return f"load average {one:.2f} (1 min), {five:.2f} (5 min) on {os.cpu_count()} CPUs"
+
+
+def timed(library: str, out: str, options: RowOptions, **how: Any) -> tuple[float, float, int]:
+    """(wall s, compiler CPU s, rows) of one run."""
+    t0 = time.perf_counter()
+    with open(os.devnull, "w") as quiet:
+        run_batch([library], ["generic-mill"], out, options=options, stream=quiet, **how)
+    wall = time.perf_counter() - t0
+    rows = read_rows(out)
+    return wall, sum(float(r["cpu_s"] or 0) for r in rows), len(rows)
+
+
+def main() -> int:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--programs", type=int, default=300)
+    ap.add_argument("-O", dest="level", type=int, default=2)
+    ap.add_argument("--quick", action="store_true", help="60 programs at -O1 (a smoke run, not for figures)")
+    args = ap.parse_args()
+    n, level = (60, 1) if args.quick else (args.programs, args.level)
+    options = RowOptions(opt_level=level, max_steps=100_000, time_limit_s=60)
+    print(f"before: {load()}")
+    with tempfile.TemporaryDirectory() as tmp:
+        library = os.path.join(tmp, "library")
+        write_library(library, n, loop=False)
+        results: dict[str, tuple[float, float, int, int]] = {}
+        for label, jobs in (("-j 1", 1), ("-j 2", 2)):
+            results[label] = (*timed(library, os.path.join(tmp, f"j{jobs}.csv"), options, jobs=jobs), jobs)
+        try:
+            from distributed import Client, LocalCluster
+        except ImportError:
+            print("LocalCluster: dask.distributed is not installed (pip install 'cncc[cluster]')")
+        else:
+            with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, host="127.0.0.1",
+                              dashboard_address=None) as cluster, Client(cluster) as client:
+                results["LocalCluster x2"] = (*timed(library, os.path.join(tmp, "dask.csv"), options,
+                                                      client=client), 2)
+    base_rate = results["-j 1"][2] / results["-j 1"][0]
+    print(f"{n} programs at -O{level} on generic-mill (one row each)")
+    print(f"{'mode':<16} {'wall s':>8} {'programs/s':>11} {'ratio to -j 1':>14} {'compiler CPU s':>15} "
+          f"{'overhead ms/program':>20}")
+    for label, (wall, cpu, rows, workers) in results.items():
+        rate = rows / wall
+        overhead_ms = (workers * wall - cpu) / rows * 1e3
+        print(f"{label:<16} {wall:8.2f} {rate:11.1f} {rate / base_rate:14.2f} {cpu:15.2f} {overhead_ms:20.1f}")
+    print(f"after: {load()}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
