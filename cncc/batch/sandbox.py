@@ -35,6 +35,7 @@ from cncc.batch.row import Row, failed_row, program_row
 
 _HEADER = struct.Struct("<I")
 WALL_FACTOR, WALL_GRACE_S = 3.0, 30.0
+STARTUP_S = 120.0  # a new child imports cncc and warms up before its first program (a loaded machine is slow)
 WARM_UP = "G90 G0 X1 Y1 Z1\nG1 X2 F100\nG2 X3 Y2 I0.5 J0.5\nM30\n"
 
 
@@ -91,15 +92,17 @@ class Sandbox:
     def run(self, task: Task) -> Row:
         limit = task.options.memory_limit_mb
         proc = self.proc
-        if proc is None or proc.poll() is not None or self.memory_limit_mb != limit:
+        fresh = proc is None or proc.poll() is not None or self.memory_limit_mb != limit
+        if fresh:
             proc = self._start(limit)
-        assert proc.stdin is not None and proc.stdout is not None
+        assert proc is not None and proc.stdin is not None and proc.stdout is not None
         try:
             _send(proc.stdin, task)
         except OSError:
             return self._died(task)
-        wall_s = task.options.time_limit_s * WALL_FACTOR + WALL_GRACE_S
-        ready, _, _ = select.select([proc.stdout], [], [], wall_s)
+        cpu_s = task.options.time_limit_s
+        wall_s = cpu_s * WALL_FACTOR + WALL_GRACE_S + (STARTUP_S if fresh else 0.0)
+        ready, _, _ = select.select([proc.stdout], [], [], wall_s if cpu_s > 0 else None)
         if not ready:
             self.close()
             return failed_row(task, "timeout", dg.BATCH_TIME_LIMIT,
