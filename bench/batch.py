@@ -11,6 +11,8 @@ i.e. what each program costs beyond its own compile (the parent, pipes, the sand
 starts; for the cluster also the scheduler, the workers and their sandboxes), which a
 loaded machine does not inflate.  The compiler CPU is the sum of the rows' ``cpu_s``;
 the cluster's processes are measured with psutil (a dask.distributed dependency).
+"of it idle": the part the processes spend when no task runs (the cluster's event
+loops and heartbeats), which grows with the wall time, not with the programs.
 """
 
 from __future__ import annotations
@@ -61,10 +63,21 @@ def tree_cpu_s(pids: list[int]) -> float:
     return total
 
 
-def timed(library: str, out: str, options: RowOptions, **how: Any) -> tuple[float, float, float, int]:
-    """(wall s, CPU s of the run's processes, compiler CPU s, rows) of one run."""
+IDLE_S = 5.0
+
+
+def idle_rate(pids: list[int]) -> float:
+    """CPU seconds per second that this process and ``pids`` spend doing nothing (a cluster's heartbeats)."""
+    cpu0, tree0 = own_cpu_s(), tree_cpu_s(pids)
+    time.sleep(IDLE_S)
+    return (own_cpu_s() - cpu0 + tree_cpu_s(pids) - tree0) / IDLE_S
+
+
+def timed(library: str, out: str, options: RowOptions, **how: Any) -> tuple[float, float, float, int, float]:
+    """(wall s, CPU s of the run's processes, compiler CPU s, rows, idle CPU s per s) of one run."""
     client = how.get("client")
     pids = sorted(client.run(os.getpid).values()) if client is not None else []
+    idle = idle_rate(pids)
     cpu0, tree0 = own_cpu_s(), tree_cpu_s(pids)
     t0 = time.perf_counter()
     with open(os.devnull, "w") as quiet:
@@ -72,7 +85,7 @@ def timed(library: str, out: str, options: RowOptions, **how: Any) -> tuple[floa
     wall = time.perf_counter() - t0
     cpu = own_cpu_s() - cpu0 + tree_cpu_s(pids) - tree0
     rows = read_rows(out)
-    return wall, cpu, sum(float(r["cpu_s"] or 0) for r in rows), len(rows)
+    return wall, cpu, sum(float(r["cpu_s"] or 0) for r in rows), len(rows), idle
 
 
 def main() -> int:
@@ -87,7 +100,7 @@ def main() -> int:
     with tempfile.TemporaryDirectory() as tmp:
         library = os.path.join(tmp, "library")
         write_library(library, n, loop=False)
-        results: dict[str, tuple[float, float, float, int]] = {}
+        results: dict[str, tuple[float, float, float, int, float]] = {}
         for label, jobs in (("-j 1", 1), ("-j 2", 2)):
             results[label] = timed(library, os.path.join(tmp, f"j{jobs}.csv"), options, jobs=jobs)
         try:
@@ -102,12 +115,14 @@ def main() -> int:
     base_rate = results["-j 1"][3] / results["-j 1"][0]
     print(f"{n} programs at -O{level} on generic-mill (one row each)")
     print(f"{'mode':<16} {'wall s':>8} {'programs/s':>11} {'ratio to -j 1':>14} {'CPU s':>8} {'compiler CPU s':>15} "
-          f"{'CPU overhead ms/program':>24}")
-    for label, (wall, cpu, compiler, rows) in results.items():
+          f"{'CPU overhead ms/program':>24} {'of it idle':>11}")
+    for label, (wall, cpu, compiler, rows, idle) in results.items():
         rate = rows / wall
         overhead_ms = (cpu - compiler) / rows * 1e3
+        idle_ms = idle * wall / rows * 1e3
         print(f"{label:<16} {wall:8.2f} {rate:11.2f} {rate / base_rate:14.2f} {cpu:8.2f} {compiler:15.2f} "
-              f"{overhead_ms:24.1f}")
+              f"{overhead_ms:24.1f} {idle_ms:11.1f}")
+    print(f"(idle: the processes' CPU while nothing runs, measured for {IDLE_S:g} s before each run, times its wall)")
     print(f"after: {load()}")
     return 0
 
