@@ -89,3 +89,74 @@ def shop_program(n_lines: int, seed: int = 2) -> str:
         out.append(f"X{10.0 + (k % cols) * 100.0 / cols:.3f} Y{10.0 + (k // cols) * 60.0 / cols:.3f}")
     out += ["G80", "G00 Z50.0", "G04 X1.0", "M05", "M30", "%"]
     return "\n".join(out) + "\n"
+# ---- a program library (cncc batch: tests/batch, bench/batch.py, docs/batch.md) ----------------
+def _moves(rnd: random.Random, n: int, arc: str, fmt: str = "{:.3f}") -> list[str]:
+    """``n`` blocks of feeds and quarter arcs (``arc`` formats "G02 X.. Y.. I.. J.."), from X0 Y0 Z-1."""
+    out = []
+    x = y = 0.0
+    for _ in range(n):
+        if rnd.random() < 0.2:
+            r = rnd.choice((2.0, 5.0))
+            out.append(arc.format(x=fmt.format(x + r), y=fmt.format(y + r), i=fmt.format(r), j=fmt.format(0.0)))
+            x, y = x + r, y + r
+        else:
+            x = round(x + rnd.uniform(-10, 10), 3)
+            y = round(y + rnd.uniform(-10, 10), 3)
+            out.append(f"G01 X{fmt.format(x)} Y{fmt.format(y)} F{rnd.choice((300, 800, 1500))}")
+    return out
+
+
+def library_program(kind: str, seed: int) -> tuple[str, str]:
+    """(file name, text) of one small program: ``kind`` is a dialect, or ``error`` (a syntax error),
+    ``unknown`` (a G code the dialect lacks), ``loop`` (a macro loop that never ends)."""
+    rnd = random.Random(seed)
+    tool = rnd.randint(1, 12)
+    n = rnd.randint(5, 25)
+    g03 = "G03 X{x} Y{y} I{i} J{j}"
+    if kind == "linuxcnc":
+        body = [f"T{tool} M06", "S2000 M03", "G00 X0 Y0 Z5", "G01 Z-1 F200", *_moves(rnd, n, g03),
+                "G00 Z5", "M05", "M02"]
+        return f"p{seed:04d}.ngc", "\n".join(["%", "G21 G90 G17", *body, "%"]) + "\n"
+    if kind == "grbl":
+        body = ["G21 G90", "M03 S10000", "G00 X0 Y0 Z5", "G01 Z-1 F200", *_moves(rnd, n, g03), "G00 Z5", "M05"]
+        return f"p{seed:04d}.gcode", "\n".join(body) + "\n"
+    if kind == "fanuc":
+        body = [f"O{1000 + seed}", "G21 G90 G17", "#100=5.", f"T{tool} M06", "S1500 M03", "G00 X0. Y0. Z#100",
+                "G01 Z-1. F200.", *_moves(rnd, n, g03), "G00 Z#100", "M05", "M30"]
+        return f"O{1000 + seed}", "%\n" + "\n".join(body) + "\n%\n"
+    if kind == "loop":
+        body = [f"O{1000 + seed}", "G21 G90", "#1=0", "WHILE[1EQ1]DO1", "#1=#1+1", "END1", "M30"]
+        return f"O{1000 + seed}", "%\n" + "\n".join(body) + "\n%\n"
+    body = ["G90 G17 G71", f"T{tool} M06", "S1500 M03", "G00 X0. Y0. Z5.", "G01 Z-1. F200.", *_moves(rnd, n, g03),
+            "G00 Z5.", "M05"]
+    if kind == "error":
+        body.insert(rnd.randint(5, len(body) - 1), "G01 X1..5 Y2.")
+    elif kind == "unknown":
+        body.insert(rnd.randint(5, len(body) - 1), "G145 X1.")
+    return f"p{seed:04d}.nc", "\n".join([*body, "M30"]) + "\n"
+
+
+LIBRARY_MIX = ("syntec",) * 4 + ("fanuc",) * 3 + ("linuxcnc",) * 2 + ("grbl", "error", "unknown")
+
+
+def write_library(folder: str, n_programs: int, *, seed: int = 7, loop: bool = True,
+                  big_lines: int = 0) -> list[str]:
+    """``n_programs`` small programs of several dialects (some with errors) in ``folder``, in
+    sub-folders of 50; with ``loop`` one endless macro loop, with ``big_lines`` one long CAM
+    program (``big.nc``, to run over a time limit).  Their paths."""
+    import os
+
+    paths = []
+    for k in range(n_programs):
+        kind = "loop" if loop and k == n_programs // 2 else LIBRARY_MIX[k % len(LIBRARY_MIX)]
+        name, text = library_program(kind, seed * 100_000 + k)
+        sub = os.path.join(folder, f"part{k // 50:02d}")
+        os.makedirs(sub, exist_ok=True)
+        paths.append(os.path.join(sub, name))
+        with open(paths[-1], "w", encoding="utf-8") as fh:
+            fh.write(text)
+    if big_lines:
+        paths.append(os.path.join(folder, "big.nc"))
+        with open(paths[-1], "w", encoding="utf-8") as fh:
+            fh.write(cam_program(big_lines, seed))
+    return paths

@@ -26,6 +26,7 @@ SCRIPTS = [
     ("lsp.py", [], ["--lines", "2000", "--edits", "3"]),
     ("pipeline.py", [], ["--lines", "20000"]),
     ("report.py", [], ["--quick"]),
+    ("batch.py", [], ["--quick"]),
 ]
 
 

@@ -283,6 +283,10 @@ def main(argv: Sequence[str] | None = None) -> int:
         from cncc.lsp import serve
 
         return serve(args[1:])
+    if args[:1] == ["batch"]:  # program libraries (cncc/batch, docs/batch.md)
+        from cncc.batch.command import main as batch_main
+
+        return batch_main(args[1:])
     parser = _parser()
     try:
         args = expand(args)

@@ -257,6 +257,13 @@ SETTING_ORIGIN = _define("N0907", N, "-v: where a setting came from (command lin
 BAD_PROJECT_CONFIG = _define("E0908", E, "a cncc.toml project file is malformed")
 NUMPY_WARNING = _define("W0909", W, "a numerical warning (overflow, invalid value) raised while computing")
 
+# --- E0995-E0999: program libraries (cncc batch) ---------------------------------
+BATCH_NO_PROGRAMS = _define("E0995", E, "batch: no program file matches the given folders and patterns")
+BATCH_TIME_LIMIT = _define("E0996", E, "batch: a program ran over its time limit")
+BATCH_MEMORY_LIMIT = _define("E0997", E, "batch: a program ran over its memory limit")
+BATCH_CRASH = _define("E0998", E, "batch: the compiler crashed on a program, or its process died")
+BATCH_RESULTS = _define("E0999", E, "batch: the results file or the cluster cannot be used")
+
 
 @dataclass(frozen=True, slots=True)
 class Related:
