@@ -243,6 +243,8 @@ XL_ARC_SPLIT = _define("N0817", N, "arcs are split into pieces the target accept
 XL_INCREMENT_UNKNOWN_START = _define("E0860", E, "a G91 move of an axis whose position the program has not set yet "
                                      "(start, tool change, reference return): the translation would write it "
                                      "from an assumed position")
+XL_RETURN_START = _define("E0861", E, "a return to the program's start point (SZGH G26) that the target cannot write: "
+                          "the start is wherever the machine was")
 TARGET_UNSUPPORTED = _define("W0890", W, "a code the target dialect has no counterpart for")
 ANALYSIS_STOPPED = _define("N0990", N, "the editor stopped analysing a document at its time budget")
 

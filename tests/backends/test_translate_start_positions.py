@@ -18,7 +18,7 @@ from __future__ import annotations
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from cncc.api import compile_commands
+from cncc.api import compile_commands, compile_text
 from cncc.dialects import available
 from tests.backends.test_translate_roundtrip import TABLES, translate
 from tests.translate.motion import difference, motion
@@ -131,3 +131,18 @@ def test_incremental_cycle_from_an_unknown_start_moves_alike() -> None:
         for start in STARTS:
             why = difference(run(text, "fanuc", start), run(out, target, start), 1e-3)
             assert not why, (target, start, why, out)
+
+
+def test_szgh_return_to_start_is_kept_or_refused() -> None:
+    """SZGH G26 (and G261-G264 for one axis) return to where the program started, which only the
+    machine knows: kept as the code in SZGH output (same motion from any start), refused with E0861
+    where the target has no such code, never written as a rapid to an assumed start."""
+    for code in ("G26", "G262"):
+        text = f"G00 X10. Y10. Z5.\nG01 X20. F300.\n{code}\nG01 X30.\nM30\n"
+        out = translate(text, "szgh", "szgh")
+        assert f"\n{code}\n" in out
+        for start in STARTS:
+            why = difference(run(text, "szgh", start), run(out, "szgh", start), 1e-3)
+            assert not why, (code, start, why, out)
+        r = compile_text(text, dialect="szgh", emit="gcode", target="fanuc")
+        assert "E0861" in [d.code for d in r.sink]

@@ -581,8 +581,26 @@ class GcodeEmitter:
         held, self.held = self.held, f.held_axes
         return tuple(k for k in range(6) if held[k] and not f.held_axes[k])
 
+    def _return_start(self, cmd: Rapid) -> Iterator[str]:
+        """SZGH G26/G261-G264: back to where the program started, which the output cannot know.
+        The target's own code where it has it (the moved axes are then unknown again), else E0861."""
+        from cncc.dialects import code_tenths
+
+        cdef = self.t.dialect.code(cmd.origin[:1], code_tenths(cmd.origin[1:]))
+        if cdef is None or cdef.op != "return_start":
+            self.warn(dg.XL_RETURN_START, f"{cmd.origin} returns to the program's start point; {self.t.name} has "
+                                          "no such code and a rapid to an assumed start would move elsewhere "
+                                          "from any other start", once=False)
+            return
+        moved = {k for k in range(6) if cmd.end[k] != cmd.start[k]} or ({cdef.index - 1} if cdef.index else set())
+        yield self.block([cdef.name])
+        self.qpos = None
+        self.unknown |= {k for k in moved if k < 3}
+
     def _motion(self, cmd: Rapid | Linear | Arc) -> Iterator[str]:
         match cmd:
+            case Rapid() if cmd.origin[:3] == "G26":
+                yield from self._return_start(cmd)
             case Rapid():
                 yield from self._g91([self.t.code("rapid"),
                                       *self._axes(cmd.start, cmd.end, self._released(cmd.frame))])
