@@ -27,11 +27,12 @@ neighbour is rounded.
 from __future__ import annotations
 
 from collections.abc import Callable
+from typing import NamedTuple
 
 import numpy as np
 
 from cncc.ir.machine import MachineModel
-from cncc.ir.trajectory import FloatArray
+from cncc.ir.trajectory import FloatArray, IntArray
 from cncc.passes.planning.geometry import NORMAL_SHARE, PathRun
 from cncc.passes.planning.limits import AxisLimits, path_limit
 from cncc.passes.planning.profile import Phases
@@ -91,7 +92,6 @@ def rounded_parts(run: PathRun, stop: np.ndarray | None, machine: MachineModel, 
 
 def candidates(run: PathRun, limits: AxisLimits, machine: MachineModel) -> np.ndarray:
     """Interior points of the (unrounded) run that may become stops, ``(k+1,)`` bool."""
-    from cncc.passes.planning.segments import piece_caps
 
     k = run.cmd.size
     cand = np.zeros(k + 1, bool)
@@ -102,8 +102,39 @@ def candidates(run: PathRun, limits: AxisLimits, machine: MachineModel) -> np.nd
     v = 1 + np.flatnonzero((run.cmd[:-1] != run.cmd[1:]) & single[:-1] & single[1:] & ~run.arc_vertex[1:-1])
     if v.size == 0:
         return cand
-    len_in, v_in, _, _ = piece_caps(run, v - 1, limits, machine)
-    len_out, v_out, _, _ = piece_caps(run, v, limits, machine)
+    g = _corner_geometry(run, v, limits, machine)
+    len_in, v_in, len_out, v_out, half = g.len_in, g.v_in, g.len_out, g.v_out, g.half
+    radius = np.nan_to_num(g.radius_mm, nan=np.inf, posinf=np.inf)
+    v_arc = np.sqrt(NORMAL_SHARE * g.a_normal * radius)
+    v_arc = np.where(half > np.pi / 2 - 5e-4, 0.0, v_arc)  # a reversal is never rounded
+    turning = half > 5e-4
+    cand[v] = turning & (len_in > 1e-9) & (len_out > 1e-9) & (v_arc < SLOW_CORNER * np.minimum(v_in, v_out))
+    return cand
+
+
+
+class _Corner(NamedTuple):
+    """The two pieces meeting at vertices ``v`` and the blend arc the tolerance allows there."""
+
+    len_in: FloatArray
+    v_in: FloatArray
+    a_in: FloatArray
+    j_in: FloatArray
+    len_out: FloatArray
+    v_out: FloatArray
+    a_out: FloatArray
+    j_out: FloatArray
+    half: FloatArray  # half the deflection angle, rad
+    d_t_mm: FloatArray  # tangent-point distance from the vertex
+    radius_mm: FloatArray  # blend radius (NaN / inf where there is no turn: the caller decides)
+    a_normal: FloatArray  # path acceleration limit across the corner, mm/s^2
+
+
+def _corner_geometry(run: PathRun, v: IntArray, limits: AxisLimits, machine: MachineModel) -> _Corner:
+    from cncc.passes.planning.segments import piece_caps
+
+    len_in, v_in, a_in, j_in = piece_caps(run, v - 1, limits, machine)
+    len_out, v_out, a_out, j_out = piece_caps(run, v, limits, machine)
     u_in = (run.points[v] - run.points[v - 1]) / np.maximum(len_in, 1e-300)[:, None]
     u_out = (run.points[v + 1] - run.points[v]) / np.maximum(len_out, 1e-300)[:, None]
     cos_t = np.clip(np.einsum("ij,ij->i", u_in, u_out), -1.0, 1.0)
@@ -112,16 +143,11 @@ def candidates(run: PathRun, limits: AxisLimits, machine: MachineModel) -> np.nd
     with np.errstate(divide="ignore", invalid="ignore"):
         d_tol = tol * np.tan(half) / (1.0 / np.cos(half) - 1.0)
         d_t = np.minimum.reduce([np.nan_to_num(d_tol, nan=0.0, posinf=np.inf), len_in / 2, len_out / 2])
-        radius = np.nan_to_num(d_t / np.tan(half), nan=np.inf, posinf=np.inf)
+        radius = d_t / np.tan(half)
     e2 = u_out - cos_t[:, None] * u_in
     e2 /= np.maximum(np.linalg.norm(e2, axis=1), 1e-300)[:, None]
-    a_min = path_limit(limits.amax_mm_s2, np.abs(u_in) + np.abs(e2))
-    v_arc = np.sqrt(NORMAL_SHARE * a_min * radius)
-    v_arc = np.where(half > np.pi / 2 - 5e-4, 0.0, v_arc)  # a reversal is never rounded
-    turning = half > 5e-4
-    cand[v] = turning & (len_in > 1e-9) & (len_out > 1e-9) & (v_arc < SLOW_CORNER * np.minimum(v_in, v_out))
-    return cand
-
+    a_normal = path_limit(limits.amax_mm_s2, np.abs(u_in) + np.abs(e2))
+    return _Corner(len_in, v_in, a_in, j_in, len_out, v_out, a_out, j_out, half, d_t, radius, a_normal)
 
 def _reach_from_rest(length: FloatArray, a_max: FloatArray, j_max: FloatArray) -> FloatArray:
     """Largest speed a ramp from rest (zero acceleration at both ends) reaches within ``length``."""
@@ -161,24 +187,14 @@ def closed_form_stops(run: PathRun, cand: np.ndarray, limits: AxisLimits, machin
     (round).  The times of both sides are compared (zero acceleration at the ramps'
     ends, as :mod:`scurve` plans them)."""
     from cncc.passes.planning.scurve import ramp_distance, ramp_time
-    from cncc.passes.planning.segments import piece_caps
 
     v = np.flatnonzero(cand)
-    len_in, v_in, a_in, j_in = piece_caps(run, v - 1, limits, machine)
-    len_out, v_out, a_out, j_out = piece_caps(run, v, limits, machine)
-    u_in = (run.points[v] - run.points[v - 1]) / np.maximum(len_in, 1e-300)[:, None]
-    u_out = (run.points[v + 1] - run.points[v]) / np.maximum(len_out, 1e-300)[:, None]
-    cos_t = np.clip(np.einsum("ij,ij->i", u_in, u_out), -1.0, 1.0)
-    half = np.arccos(cos_t) / 2
-    tol = run.tol_mm[v - 1]
-    with np.errstate(divide="ignore", invalid="ignore"):
-        d_tol = tol * np.tan(half) / (1.0 / np.cos(half) - 1.0)
-        d_t = np.minimum.reduce([np.nan_to_num(d_tol, nan=0.0, posinf=np.inf), len_in / 2, len_out / 2])
-        radius = np.nan_to_num(d_t / np.tan(half), nan=0.0, posinf=0.0)
-    e2 = u_out - cos_t[:, None] * u_in
-    e2 /= np.maximum(np.linalg.norm(e2, axis=1), 1e-300)[:, None]
-    a_min = path_limit(limits.amax_mm_s2, np.abs(u_in) + np.abs(e2))
-    w = np.sqrt(NORMAL_SHARE * a_min * radius)
+    g = _corner_geometry(run, v, limits, machine)
+    len_in, v_in, a_in, j_in = g.len_in, g.v_in, g.a_in, g.j_in
+    len_out, v_out, a_out, j_out = g.len_out, g.v_out, g.a_out, g.j_out
+    half, d_t = g.half, g.d_t_mm
+    radius = np.nan_to_num(g.radius_mm, nan=0.0, posinf=0.0)
+    w = np.sqrt(NORMAL_SHARE * g.a_normal * radius)
     if blend_speed is not None:
         w = np.minimum(w, blend_speed[v])
     arc_half = radius * half  # half of the arc (deflection 2 * half)
