@@ -112,15 +112,21 @@ async def outline_of(ls: CnccServer, uri: str) -> tuple[Outline, Any] | None:
     found = await ls.guarded(lambda check: outline(text, dialect, check), settings.budget_s)
     return (found, index) if found is not None else None
 
-async def definition(ls: CnccServer, params: lsp.DefinitionParams) -> list[lsp.Location] | None:
-    uri = params.text_document.uri
+async def _reference_at(ls: CnccServer, uri: str, position: lsp.Position) -> tuple[Outline, Any, Any] | None:
+    """(outline, line index, reference under the cursor), or None where there is none."""
     got = await outline_of(ls, uri)
     if got is None:
         return None
     out, index = got
-    ref = out.at(convert.offset(index, params.position))
-    if ref is None:
+    ref = out.at(convert.offset(index, position))
+    return None if ref is None else (out, index, ref)
+
+async def definition(ls: CnccServer, params: lsp.DefinitionParams) -> list[lsp.Location] | None:
+    uri = params.text_document.uri
+    at = await _reference_at(ls, uri, params.position)
+    if at is None:
         return None
+    out, index, ref = at
     found = [lsp.Location(uri=uri, range=convert.span_range(index, r.start, r.end)) for r in out.definitions(ref)]
     if not found and ref.kind in ("program", "sub"):
         found = _program_files(ls, uri, ref)
@@ -128,13 +134,10 @@ async def definition(ls: CnccServer, params: lsp.DefinitionParams) -> list[lsp.L
 
 async def references(ls: CnccServer, params: lsp.ReferenceParams) -> list[lsp.Location] | None:
     uri = params.text_document.uri
-    got = await outline_of(ls, uri)
-    if got is None:
+    at = await _reference_at(ls, uri, params.position)
+    if at is None:
         return None
-    out, index = got
-    ref = out.at(convert.offset(index, params.position))
-    if ref is None:
-        return None
+    out, index, ref = at
     refs = out.references(ref, params.context.include_declaration)
     return [lsp.Location(uri=uri, range=convert.span_range(index, r.start, r.end)) for r in refs]
 
