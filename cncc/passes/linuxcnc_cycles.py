@@ -58,11 +58,17 @@ def _feed_out(p: _Path) -> None:
     _rapid(p, p.at(c.retract_mm))
 
 
-def _dwell_stop(p: _Path) -> None:
+def _to_bottom_and_dwell(p: _Path) -> None:
+    """Rapid to R, feed to the bottom, dwell there (P, printed even when zero)."""
     c = p.c
     p.rapid(p.at(c.r_mm))
     _feed(p, p.at(c.bottom_mm))
     _dwell(p)
+
+
+def _dwell_stop(p: _Path) -> None:
+    c = p.c
+    _to_bottom_and_dwell(p)
     p.spindle(SpindleState.OFF)
     _rapid(p, p.at(c.retract_mm))
     p.spindle(p.forward)
@@ -70,17 +76,13 @@ def _dwell_stop(p: _Path) -> None:
 
 def _dwell_feed_out(p: _Path) -> None:
     c = p.c
-    p.rapid(p.at(c.r_mm))
-    _feed(p, p.at(c.bottom_mm))
-    _dwell(p)
+    _to_bottom_and_dwell(p)
     _feed(p, p.at(c.retract_mm))
 
 
 def _manual(p: _Path) -> None:
     c = p.c
-    p.rapid(p.at(c.r_mm))
-    _feed(p, p.at(c.bottom_mm))
-    _dwell(p)
+    _to_bottom_and_dwell(p)
     p.spindle(SpindleState.OFF)
     p.out.append(Stop(c.span, c.frame, StopKind.PROGRAM_STOP))
     p.spindle(p.forward)
