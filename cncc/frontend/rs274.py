@@ -18,6 +18,7 @@ through the machine's reference) stays untouched:
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING
 from weakref import WeakKeyDictionary
@@ -192,25 +193,24 @@ def _g92_x(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
 @handler("set_origin_rs274")
 def _g92(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     """G92 as LinuxCNC has it: the shift is remembered in the parameters for G92.3."""
-    ctx.axis_used = True
-    shift = list(it.frame.g92_offset_mm)
-    for i, letter in enumerate(AXES):
-        w = ctx.words.get(letter)
-        if w is not None:
-            shift[i] += it.pos[i] - it.reader.axis_value(w)
-    state(it).g92_saved_mm = _vec(shift)
-    _set_g92(it, ctx, _vec(shift))
+    _shift_named_axes(it, ctx, lambda i, old, value: old + it.pos[i] - value)
 
 
 @handler("local_offset_rs274")
 def _g52(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     """G52 as LinuxCNC has it: the given axes' G92 offsets are set to the words (no stacking)."""
+    _shift_named_axes(it, ctx, lambda i, old, value: value)
+
+
+def _shift_named_axes(it: Interpreter, ctx: BlockContext, shifted: Callable[[int, float, float], float]) -> None:
+    """The G92 offset with each named axis ``i`` replaced by ``shifted(i, old offset, word value)``,
+    remembered for G92.3 and set."""
     ctx.axis_used = True
     shift = list(it.frame.g92_offset_mm)
     for i, letter in enumerate(AXES):
         w = ctx.words.get(letter)
         if w is not None:
-            shift[i] = it.reader.axis_value(w)
+            shift[i] = shifted(i, shift[i], it.reader.axis_value(w))
     state(it).g92_saved_mm = _vec(shift)
     _set_g92(it, ctx, _vec(shift))
 
