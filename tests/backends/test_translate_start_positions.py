@@ -109,28 +109,29 @@ def test_g10_work_offset_survives_translation() -> None:
         assert run(out, target, None)[-1][1][:2] == (110.0, 60.0)
 
 
+def moves_alike_into_every_target(text: str, src: str) -> None:
+    """``text`` and its translation into every target give the same machine positions from each start."""
+    for target in TARGETS:
+        out = translate(text, src, target)
+        for start in STARTS:
+            why = difference(run(text, src, start), run(out, target, start), 1e-3)
+            assert not why, (target, start, why, out)
+
+
 def test_linuxcnc_g52_of_an_unpositioned_axis_moves_alike_from_any_start() -> None:
     """Found by the property above once G52 became LinuxCNC's G92 offset: Y has no position yet when
     ``G52 Y5.`` runs, so a target ``G92 Y-5.`` would set the origin from wherever the machine is.  The
     offset change must be written position-independently (the target's G52) and still cancel."""
     text = ("G21 G90 G17 G94\nG00 X0\nG01 X0 F300.\nG52 X0 Y5.\nG00 X0 Y0\nG01 X0 F350.\nG52 X0 Y0 Z0\n"
             "G01 X0 F500.\nM2\n")
-    for target in TARGETS:
-        out = translate(text, "linuxcnc", target)
-        for start in STARTS:
-            why = difference(run(text, "linuxcnc", start), run(out, target, start), 1e-3)
-            assert not why, (target, start, why, out)
+    moves_alike_into_every_target(text, "linuxcnc")
 
 
 def test_incremental_cycle_from_an_unknown_start_moves_alike() -> None:
     """A G91 drilling cycle as the first motion: its holes are increments from wherever the machine is,
     so no target may get them as absolute coordinates (the cycle is written as its G91 moves)."""
     text = "G21 G17 G91 G98 G81 X10. Y10. Z-5. R-2. F100.\nX10.\nG80\nG90 G00 X0 Y0 Z50.\nM30\n"
-    for target in TARGETS:
-        out = translate(text, "fanuc", target)
-        for start in STARTS:
-            why = difference(run(text, "fanuc", start), run(out, target, start), 1e-3)
-            assert not why, (target, start, why, out)
+    moves_alike_into_every_target(text, "fanuc")
 
 
 def test_szgh_return_to_start_is_kept_or_refused() -> None:
