@@ -619,7 +619,7 @@ def _home_via(it: Interpreter, ctx: BlockContext, c: CodeDef, index: int) -> Non
     flags = tuple(i in named for i in range(6))
     from cncc.frontend.modal import Reference
 
-    it.reference = Reference(mid, flags)
+    it.refs = replace(it.refs, intermediate=Reference(mid, flags))
 
 
 @handler("home")
@@ -644,7 +644,7 @@ def _g29(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     named = _axes_named(ctx)
     if not named:
         return
-    mid = tuple(it.reference.point[i] if i in named else it.pos[i] for i in range(6))
+    mid = tuple(it.refs.intermediate.point[i] if i in named else it.pos[i] for i in range(6))
     it.release_axes(named)  # the intermediate point is an absolute position
     ctx.out.append(Rapid(ctx.span, it.frame, it.pos, mid, block_motion(it, ctx), origin=c.name))  # type: ignore[arg-type]
     it.pos = mid  # type: ignore[assignment]

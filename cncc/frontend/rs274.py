@@ -21,7 +21,6 @@ import math
 from collections.abc import Callable
 from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING
-from weakref import WeakKeyDictionary
 
 from cncc import diagnostics as dg
 from cncc.dialects import CodeDef
@@ -48,13 +47,11 @@ class Rs274State:
     rotation_deg: dict[int, float] = field(default_factory=dict)  # G10 L2 R: work system -> XY rotation
 
 
-_STATES: WeakKeyDictionary[Interpreter, Rs274State] = WeakKeyDictionary()
-
-
 def state(it: Interpreter) -> Rs274State:
-    st = _STATES.get(it)
+    """The interpreter's RS274 record, made on first use (``Interpreter.rs274``)."""
+    st = it.rs274
     if st is None:
-        st = _STATES[it] = Rs274State()
+        st = it.rs274 = Rs274State()
     return st
 
 
@@ -118,7 +115,7 @@ def _absolute_centres(it: Interpreter, ctx: BlockContext) -> None:
     for c in ctx.codes:  # G90.1/G91.1 in this block apply before its motion
         if c.op in ("arc_absolute", "arc_incremental"):
             state(it).arc_absolute = c.op == "arc_absolute"
-    st = _STATES.get(it)
+    st = it.rs274
     motion = next((c.op for c in ctx.codes if c.group == "motion"), it.modal.motion)
     if st is None or not st.arc_absolute or motion not in ("arc_cw", "arc_ccw"):
         return
@@ -281,7 +278,7 @@ def _g94(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
 
 def _inverse_time_feed(it: Interpreter, ctx: BlockContext) -> None:
     """In G93 the block's F (1/min) becomes the path feed length x F for this block."""
-    st = _STATES.get(it)
+    st = it.rs274
     motion = next((c.op for c in ctx.codes if c.group == "motion"), it.modal.motion)
     if st is None or not st.inverse_time or motion not in ("linear", "arc_cw", "arc_ccw"):
         return

@@ -20,13 +20,13 @@ the positions stay as programmed.  ``docs/frames.md`` explains the choices.
 from __future__ import annotations
 
 import math
-import weakref
-from dataclasses import dataclass, field, replace
+from dataclasses import replace
 from typing import TYPE_CHECKING
 
 from cncc import diagnostics as dg
 from cncc.dialects import CodeDef
 from cncc.frontend.ops import AXES, BLOCK_HOOKS, handler
+from cncc.frontend.run_state import TransformState
 from cncc.ir import CompSide, SetMode, Vec6
 from cncc.ir.frame import Mirror, Polar, Rotation, Scaling
 
@@ -37,27 +37,9 @@ if TYPE_CHECKING:
 _ARC_OPS = ("arc_cw", "arc_ccw")
 
 
-@dataclass(slots=True)
-class _State:
-    """Per-interpreter state these handlers keep beside the modal snapshot."""
-
-    polar_radius_mm: float = 0.0
-    polar_angle_deg: float = 0.0
-    length_wear_mm: dict[int, float] = field(default_factory=dict)
-    radius_wear_mm: dict[int, float] = field(default_factory=dict)
-    length_op: str = "length_off"
-    comp_op: str = "comp_off"
-    d_index: int = 0
-
-
-_STATES: weakref.WeakKeyDictionary[Interpreter, _State] = weakref.WeakKeyDictionary()
-
-
-def _state(it: Interpreter) -> _State:
-    st = _STATES.get(it)
-    if st is None:
-        st = _STATES[it] = _State()
-    return st
+def _state(it: Interpreter) -> TransformState:
+    """The interpreter's transform record (mutable, owned by the interpreter)."""
+    return it.transform
 
 
 def _index(it: Interpreter, w: Word) -> int | None:

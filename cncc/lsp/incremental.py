@@ -43,7 +43,6 @@ if TYPE_CHECKING:
 
 EVERY = 128  # lines between two checkpoints of a full run
 MAX_REGION_LINES = 20_000  # a resume that re-runs more than this gives up (the full run is as fast)
-_FIXED = frozenset({"dialect", "sink", "source_id", "options", "handlers", "_motion_cache"})
 
 
 @dataclass(frozen=True, slots=True)
@@ -54,17 +53,12 @@ class Checkpoint:
 
 
 def state_of(it: Interpreter) -> dict[str, Any]:
-    """The interpreter's state: every attribute but its fixed parts, containers copied."""
-    out = {}
-    for k, v in it.__dict__.items():
-        if k not in _FIXED:
-            out[k] = v.copy() if isinstance(v, dict | list | set) else v
-    return out
+    """The interpreter's run state (every field but its fixed parts), copied."""
+    return it.run_state()
 
 
 def restore(it: Interpreter, state: dict[str, Any]) -> None:
-    for k, v in state.items():
-        setattr(it, k, v.copy() if isinstance(v, dict | list | set) else v)
+    it.restore_run_state(state)
 
 
 class Shifts:

@@ -54,8 +54,7 @@ class LinuxcncExecutor:
     def __init__(self, dialect: Dialect, sink: DiagnosticSink, it: Interpreter, parser: Parser,
                  include_dirs: tuple[str, ...] = (), max_steps: int = 5_000_000) -> None:
         self.dialect = dialect
-        self.sink = ControllerSink(sink, ControllerTexts(dialect.raw.get("errors", {})))
-        it.sink = self.sink
+        self.sink = ControllerSink(sink, ControllerTexts(dialect.raw.get("errors", {})))  # the run's (see run)
         self.it = it
         self.parser = parser
         self.params = Parameters(system=self._system)
@@ -101,6 +100,10 @@ class LinuxcncExecutor:
 
     # ---- running
     def run(self, src: SourceFile) -> Iterator[Command]:
+        with self.it.redirect(sink=self.sink):  # the interpreter reports in the controller's words too
+            yield from self._run(src)
+
+    def _run(self, src: SourceFile) -> Iterator[Command]:
         index = FlowIndex.build(list(self.parser.blocks(src)), src, self.sink)
         if index is None:
             return
