@@ -375,4 +375,3 @@ for _op in _SPINDLE_OPS:
     if _op in ops.HANDLERS:
         ops.HANDLERS[_op] = _track_spindle(ops.HANDLERS[_op])
 
-from cncc.frontend import holes as _holes  # noqa: E402,F401  (registers the pattern op)

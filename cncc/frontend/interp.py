@@ -24,6 +24,7 @@ from cncc import diagnostics as dg
 from cncc.diagnostics import DiagnosticSink
 from cncc.dialects import CodeDef, Dialect, code_name, code_tenths
 from cncc.frontend.modal import ModalState
+from cncc.frontend.registry import DEFAULT_ORDER
 from cncc.frontend.run_state import CycleState, LayerRecords, References, RunNotes, TransformState
 from cncc.frontend.syntax import Block, Word
 from cncc.frontend.words import WordReader
@@ -43,25 +44,8 @@ from cncc.source import Span
 
 if TYPE_CHECKING:
     from cncc.frontend.ops import HandlerTable
-    from cncc.frontend.rs274 import Rs274State
+    from cncc.frontend.rs274_state import Rs274State
 
-# Execution order of the ops within one block (lower runs first).
-ORDER: dict[str, int] = {
-    "feed_per_min": 10, "feed_per_rev": 10, "inverse_time": 10,
-    "dwell": 40,
-    "plane_xy": 50, "plane_zx": 50, "plane_yz": 50,
-    "inch": 55, "metric": 55,
-    "comp_off": 60, "comp_left": 60, "comp_right": 60,
-    "length_plus": 65, "length_minus": 65, "length_off": 65,
-    "work": 70,
-    "exact_stop_mode": 75, "curve_mode": 75, "tapping_mode": 75, "continuous_mode": 75, "exact_stop_once": 75,
-    "absolute": 80, "incremental": 80,
-    "return_initial": 85, "return_r": 85,
-    "css_on": 86, "css_off": 86,
-    "polar_on": 87, "polar_off": 87, "scale_on": 87, "scale_off": 87, "mirror_on": 87, "mirror_off": 87,
-    "rotate_on": 88, "rotate_off": 88,
-}
-DEFAULT_ORDER = 90  # non-modal and motion codes
 AXIS_LETTERS = "XYZABC"
 AXIS_INDEX = {c: i for i, c in enumerate(AXIS_LETTERS)}
 # Ops that take the block's axis words for themselves (so no motion happens).
@@ -116,13 +100,13 @@ class Interpreter:
 
     def __init__(self, dialect: Dialect, sink: DiagnosticSink, source_id: int = 0,
                  options: InterpOptions | None = None, table: HandlerTable | None = None) -> None:
-        from cncc.frontend import ops  # the handler table
+        from cncc.frontend.handler_tables import core_table
 
         self.dialect = dialect
         self.sink = sink
         self.source_id = source_id
         self.options = options or InterpOptions()
-        self.table = table or ops.core_table()  # a dialect layer passes its own composed table
+        self.table = table or core_table()  # a dialect layer passes its own composed table
         self.handlers = self.table.handlers
         units = Units.INCH if dialect.default_units == "inch" else Units.MM
         self.reader = WordReader.for_dialect(dialect, units)

@@ -19,40 +19,19 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass, field, replace
+from dataclasses import replace
 from typing import TYPE_CHECKING
 
 from cncc import diagnostics as dg
 from cncc.dialects import CodeDef
 from cncc.frontend import ops
 from cncc.frontend.ops import AXES, handler, target
+from cncc.frontend.rs274_state import Rs274State as Rs274State  # re-exported
+from cncc.frontend.rs274_state import state as state  # re-exported
 from cncc.ir import ZERO6, FeedRate, PathMode, Rapid, SetMode, Vec6
 
 if TYPE_CHECKING:
     from cncc.frontend.interp import BlockContext, Interpreter
-
-
-@dataclass(slots=True)
-class Rs274State:
-    """RS274 modes the shared :class:`~cncc.frontend.modal.ModalState` does not hold."""
-
-    arc_absolute: bool = False  # G90.1
-    inverse_time: bool = False  # G93
-    g92_saved_mm: Vec6 = ZERO6  # parameters 5211-5216 (G92.2 keeps them, G92.3 restores)
-    stored_mm: dict[int, Vec6] = field(default_factory=dict)  # G28 (1) / G30 (2) in machine coordinates
-    g5_pq_mm: tuple[float, float] = (0.0, 0.0)  # P, Q of the last G5 (its end tangent)
-    nurbs: list[tuple[float, float, float]] = field(default_factory=list)  # G5.2 control points x, y, weight
-    nurbs_order: int = 3
-    naive_mm: float = 0.0  # G64 Q (the naive-CAM tolerance in force)
-    rotation_deg: dict[int, float] = field(default_factory=dict)  # G10 L2 R: work system -> XY rotation
-
-
-def state(it: Interpreter) -> Rs274State:
-    """The interpreter's RS274 record, made on first use (``Interpreter.rs274``)."""
-    st = it.rs274
-    if st is None:
-        st = it.rs274 = Rs274State()
-    return st
 
 
 def _vec(values: list[float]) -> Vec6:
@@ -326,6 +305,3 @@ def _path_length_mm(it: Interpreter, ctx: BlockContext, end: Vec6, motion: str) 
 
 ops.BLOCK_HOOKS.append(_inverse_time_feed)
 
-
-from cncc.frontend import rs274_curves as _curves  # noqa: E402,F401  (G5, G5.1, G5.2/G5.3)
-from cncc.frontend import rs274_sync as _sync  # noqa: E402,F401  (G33, G33.1)

@@ -15,7 +15,6 @@ from __future__ import annotations
 import os
 import re
 from collections.abc import Iterator
-from dataclasses import dataclass, field
 
 from cncc import diagnostics as dg
 from cncc.diagnostics import DiagnosticSink, Related
@@ -25,6 +24,7 @@ from cncc.frontend.interp import Interpreter
 from cncc.frontend.linuxcnc.builder import oword_of
 from cncc.frontend.linuxcnc.evaluate import EvalError, Evaluator, Parameters, Scope
 from cncc.frontend.linuxcnc.flow import FlowIndex
+from cncc.frontend.linuxcnc.frames import Frame as Frame  # re-exported
 from cncc.frontend.linuxcnc.report import Before, Reporter
 from cncc.frontend.parser import Parser
 from cncc.frontend.syntax import Assign, Block, CommentItem, Word
@@ -33,21 +33,6 @@ from cncc.source import SourceFile, Span
 
 _MESSAGE = re.compile(r"^\(\s*(MSG|DEBUG|PRINT|ABORT)\s*,(.*)\)$", re.IGNORECASE | re.DOTALL)
 _PARAM_IN_TEXT = re.compile(r"#\s*<[^>]*>|#\d+")
-
-
-@dataclass(slots=True)
-class Frame:
-    """One running program or subroutine."""
-
-    index: FlowIndex
-    pc: int
-    name: str = "main"
-    return_pc: int = -1
-    caller: Frame | None = None
-    call_span: Span | None = None
-    repeats: dict[int, int] = field(default_factory=dict)
-    m98_count: int = 0
-    m98_start: int = 0
 
 
 class LinuxcncExecutor:
