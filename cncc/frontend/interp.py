@@ -105,7 +105,8 @@ class Interpreter:
         self.dialect = dialect
         self.sink = sink
         self.source_id = source_id
-        self.options = options or InterpOptions()
+        # Its own copy of the tables a program writes (G10, #2001 ...): the caller's stay as given.
+        self.options = _own_tables(options or InterpOptions())
         self.table = table or core_table()  # a dialect layer passes its own composed table
         self.handlers = self.table.handlers
         units = Units.INCH if dialect.default_units == "inch" else Units.MM
@@ -195,16 +196,24 @@ class Interpreter:
         return Redirect(self, sink, source_id)
 
     def run_state(self) -> dict[str, object]:
-        """A copy of the run state (every field but the fixed parts: dialect, options, sink,
-        handler table, caches), for checkpoints (``cncc/lsp/incremental.py``); the mutable
-        records are copied, so running on does not change it, and two are equal when the
-        runs are in the same state."""
-        return {k: _copied(getattr(self, k)) for k in self.__slots__ if k not in _FIXED_FIELDS}
+        """A copy of the run state (every field but the fixed parts: dialect, sink, handler
+        table, caches; of the options only the offset tables, which G10 writes), for
+        checkpoints (``cncc/lsp/incremental.py``); the mutable records are copied, so
+        running on does not change it, and two are equal when the runs are in the same state."""
+        state = {k: _copied(getattr(self, k)) for k in self.__slots__ if k not in _FIXED_FIELDS}
+        o = self.options
+        state[_TABLES] = (dict(o.work_offsets_mm), dict(o.tool_lengths_mm), dict(o.tool_radii_mm))
+        return state
 
     def restore_run_state(self, state: dict[str, object]) -> None:
         """Go back to a :meth:`run_state` (which stays usable for another restore)."""
         for k, v in state.items():
-            setattr(self, k, _copied(v))
+            if k == _TABLES:
+                assert isinstance(v, tuple)
+                o = self.options
+                o.work_offsets_mm, o.tool_lengths_mm, o.tool_radii_mm = (dict(t) for t in v)
+            else:
+                setattr(self, k, _copied(v))
 
     # ---- helpers used by the handlers
     def emit_error(self, code: str, span: Span, message: str) -> None:
@@ -335,6 +344,14 @@ class Interpreter:
 
 
 _FIXED_FIELDS = frozenset({"dialect", "sink", "source_id", "options", "handlers", "table", "_motion_cache"})
+
+
+_TABLES = "options.tables"  # run_state's key for the offset tables
+
+
+def _own_tables(o: InterpOptions) -> InterpOptions:
+    return replace(o, work_offsets_mm=dict(o.work_offsets_mm), tool_lengths_mm=dict(o.tool_lengths_mm),
+                   tool_radii_mm=dict(o.tool_radii_mm))
 
 
 def _copied(v: object) -> object:

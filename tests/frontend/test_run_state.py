@@ -81,20 +81,37 @@ def test_layer_records_hold_one_record_per_type() -> None:
     assert records.get(S8State) is second and not second.sharp
 
 
-def test_a_resumed_lsp_analysis_keeps_wear_written_before_the_checkpoint() -> None:
-    """G10 L11 writes a length wear at the top; a G43 H1 far below the last checkpoint
-    uses it.  Resuming after an edit near that G43 must give what a full analysis gives
-    (the wear lives in the interpreter's transform record, which the checkpoint copies)."""
+def test_a_resumed_lsp_analysis_keeps_offsets_written_before_the_checkpoint() -> None:
+    """G10 writes a tool length, its wear and a work offset at the top; G43 H1 and G55 far
+    below the last checkpoint use them.  Resuming after an edit near them must give what a
+    full analysis gives (the wear is in the interpreter's transform record, the tables in
+    its own copy of the options; the checkpoint copies both)."""
     sys.path.insert(0, str(ROOT / "tests" / "lsp"))
     from test_incremental import assert_same, full, resumed  # type: ignore[import-not-found]
 
-    lines = ["%", "O1000", "G90 G17 G21 G94", "G10 L11 P1 R0.3", "G00 X0 Y0 Z5.",
-             "G01 Z-1. F600."]
+    lines = ["%", "O1000", "G90 G17 G21 G94", "G10 L10 P1 R50.", "G10 L11 P1 R0.3", "G10 L2 P2 X10. Y20.",
+             "G00 X0 Y0 Z5.", "G01 Z-1. F600."]
     lines += [f"G01 X{i % 17}.5 Y{i % 11}." for i in range(400)]
-    lines += ["G43 H1 Z20.", "G01 X3. Y3.", "G49 Z30.", "M30", "%"]
+    lines += ["G43 H1 Z20.", "G01 X3. Y3.", "G55 G01 X1.", "G49 Z30.", "M30", "%"]
     text = "\n".join(lines) + "\n"
     old = full(text)
     edited = text.replace("G01 X3. Y3.", "G01 X4. Y3.")
     got = resumed(old, edited)
     assert got is not None  # resumed, not re-run from the top
     assert_same(got, full(edited))
+
+
+def test_a_program_does_not_write_the_callers_tables() -> None:
+    """G10 changes the interpreter's tables, not the options object the caller gave."""
+    from cncc.frontend.interp import InterpOptions
+    from cncc.frontend.parser import Parser
+    from cncc.source import SourceMap
+
+    opts = InterpOptions(tool_lengths_mm={1: 10.0})
+    sink = DiagnosticSink()
+    it = Interpreter(load_dialect("syntec"), sink, 0, opts)
+    src = SourceMap().add("t.nc", "G10 L10 P1 R50.\nG10 L2 P1 X5.\n")
+    for block in Parser(it.dialect, sink).blocks(src):
+        it.execute(block)
+    assert it.options.tool_lengths_mm == {1: 50.0} and it.options.work_offsets_mm[1][0] == 5.0
+    assert opts.tool_lengths_mm == {1: 10.0} and opts.work_offsets_mm == {}
