@@ -25,6 +25,7 @@ from cncc.diagnostics import DiagnosticSink
 from cncc.dialects import CodeDef, Dialect, code_name, code_tenths
 from cncc.frontend.modal import ModalState
 from cncc.frontend.registry import DEFAULT_ORDER
+from cncc.frontend.registry import ORDER as ORDER  # re-exported (the in-block order of ops)
 from cncc.frontend.run_state import CycleState, LayerRecords, References, RunNotes, TransformState
 from cncc.frontend.syntax import Block, Word
 from cncc.frontend.words import WordReader
@@ -43,7 +44,7 @@ from cncc.ir.frame import ALL_HELD, LINEAR_HELD, NOT_HELD
 from cncc.source import Span
 
 if TYPE_CHECKING:
-    from cncc.frontend.ops import HandlerTable
+    from cncc.frontend.registry import HandlerTable
     from cncc.frontend.rs274_state import Rs274State
 
 AXIS_LETTERS = "XYZABC"
@@ -355,17 +356,17 @@ def _own_tables(o: InterpOptions) -> InterpOptions:
 
 
 def _copied(v: object) -> object:
+    """``v`` itself when it cannot change (frozen records, numbers, tuples), else a copy:
+    containers one level deep, the mutable records (``TransformState``, ``RunNotes``,
+    ``LayerRecords``, ``Rs274State``) deep."""
     if isinstance(v, dict | list | set):
         return v.copy()
-    if isinstance(v, TransformState | RunNotes | LayerRecords) or (v is not None and not _immutable(v)):
-        return copy.deepcopy(v)
-    return v
+    return v if _immutable(v) else copy.deepcopy(v)
 
 
 def _immutable(v: object) -> bool:
-    """Frozen records, numbers, tuples and the like (shared by every copy)."""
     params = getattr(type(v), "__dataclass_params__", None)
-    return params.frozen if params is not None else isinstance(v, int | float | str | tuple | frozenset | WordReader)
+    return params.frozen if params is not None else v is None or isinstance(v, int | float | str | tuple | frozenset)
 
 
 class Redirect:
@@ -375,7 +376,7 @@ class Redirect:
 
     def __init__(self, it: Interpreter, sink: DiagnosticSink | None, source_id: int | None) -> None:
         self._it, self._sink, self._source_id = it, sink, source_id
-        self._saved = (it.sink, it.source_id)
+        self._saved = (it.sink, it.source_id)  # (set again on entry: a context may be entered later)
 
     def __enter__(self) -> Interpreter:
         it = self._it
