@@ -17,7 +17,10 @@ is above the hole at R.  Every move is made even when it has no length (rs274 pr
 from __future__ import annotations
 
 from cncc.ir import CycleKind, Dwell, Linear, Rapid, SetMode, SpindleState, Stop, StopKind, Vec6
-from cncc.passes.expand_cycles import SEQUENCES, _Path
+from cncc.passes.cycle_path import CyclePath as _Path
+from cncc.passes.cycle_path import Sequence
+
+SEQUENCES: dict[CycleKind, Sequence] = {}  # this module's kinds (expand_cycles.SEQUENCES merges them)
 
 
 def _feed(p: _Path, q: Vec6) -> None:

@@ -1,6 +1,6 @@
 """The hole sequences of the SERIES 8 cycle kinds, registered into ``expand-cycles``.
 
-Consumes nothing by itself: importing it adds to :data:`cncc.passes.expand_cycles.SEQUENCES`
+Consumes nothing by itself: :data:`cncc.passes.expand_cycles.SEQUENCES` merges its :data:`SEQUENCES`,
 the per-hole moves of the kinds only SERIES 8 has (spec series8.md 4.14; levels are
 absolute, every hole ends at R except G87 and G89):
 
@@ -19,7 +19,10 @@ absolute, every hole ends at R except G87 and G89):
 from __future__ import annotations
 
 from cncc.ir import CycleKind, SpindleState
-from cncc.passes.expand_cycles import SEQUENCES, _Path
+from cncc.passes.cycle_path import CyclePath as _Path
+from cncc.passes.cycle_path import Sequence
+
+SEQUENCES: dict[CycleKind, Sequence] = {}  # this module's kinds (expand_cycles.SEQUENCES merges them)
 
 
 def first_peck_depths(r_mm: float, bottom_mm: float, first_mm: float | None, peck_mm: float) -> list[float]:
