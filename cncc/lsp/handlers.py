@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import os
 from collections.abc import Callable
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from lsprotocol import types as lsp
 
@@ -18,9 +18,11 @@ from cncc.lsp.config import open_dialect
 from cncc.lsp.hover import word_hover
 from cncc.lsp.navigate import Outline, Ref, outline, oword_key, program_key, subroutines
 from cncc.lsp.scan import Comments, token_at, tokens
-from cncc.lsp.server import CnccServer
 from cncc.lsp.subs import named_hover, sub_hover
 from cncc.lsp.variables import hover_variable
+
+if TYPE_CHECKING:
+    from cncc.lsp.server import CnccServer  # (the server imports this module's registrations)
 
 GCODE_SUFFIXES = (".nc", ".cnc", ".tap", ".ngc", ".gcode", ".mpf", ".ptp", "")
 
