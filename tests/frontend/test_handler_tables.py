@@ -50,3 +50,18 @@ def test_the_core_table_holds_every_registering_module() -> None:
                "save_point", "polar_on"):
         assert op in handlers
     assert t["wrapped_plane"] == "_guard_plane.<locals>.guarded"  # cycles.py's guard is on the shared plane op
+
+
+def test_every_module_that_registers_ops_is_composed() -> None:
+    """A module that registers core ops but is missing from handler_tables.REGISTERING_MODULES
+    would be in the table only if something happened to import it first: list them all."""
+    import re
+
+    from cncc.frontend.handler_tables import REGISTERING_MODULES
+
+    registers = re.compile(r"^@(ops\.)?handler\(|^(ops\.)?MOTIONS\[|^(ops\.)?MOTIONS\.setdefault\(|"
+                           r"^(ops\.)?BLOCK_HOOKS\.append\(|^(ops\.)?HANDLERS\[", re.MULTILINE)
+    frontend = ROOT / "cncc" / "frontend"
+    found = {".".join(p.relative_to(ROOT).with_suffix("").parts) for p in frontend.rglob("*.py")
+             if registers.search(p.read_text(encoding="utf-8"))}
+    assert found - {m.__name__ for m in REGISTERING_MODULES} == set()
