@@ -15,7 +15,6 @@ from __future__ import annotations
 import os
 import re
 from collections.abc import Iterator
-from dataclasses import dataclass, field
 
 from cncc import diagnostics as dg
 from cncc.diagnostics import DiagnosticSink, Related
@@ -25,6 +24,7 @@ from cncc.frontend.interp import Interpreter
 from cncc.frontend.linuxcnc.builder import oword_of
 from cncc.frontend.linuxcnc.evaluate import EvalError, Evaluator, Parameters, Scope
 from cncc.frontend.linuxcnc.flow import FlowIndex
+from cncc.frontend.linuxcnc.frames import Frame as Frame  # re-exported
 from cncc.frontend.linuxcnc.report import Before, Reporter
 from cncc.frontend.parser import Parser
 from cncc.frontend.syntax import Assign, Block, CommentItem, Word
@@ -35,27 +35,11 @@ _MESSAGE = re.compile(r"^\(\s*(MSG|DEBUG|PRINT|ABORT)\s*,(.*)\)$", re.IGNORECASE
 _PARAM_IN_TEXT = re.compile(r"#\s*<[^>]*>|#\d+")
 
 
-@dataclass(slots=True)
-class Frame:
-    """One running program or subroutine."""
-
-    index: FlowIndex
-    pc: int
-    name: str = "main"
-    return_pc: int = -1
-    caller: Frame | None = None
-    call_span: Span | None = None
-    repeats: dict[int, int] = field(default_factory=dict)
-    m98_count: int = 0
-    m98_start: int = 0
-
-
 class LinuxcncExecutor:
     def __init__(self, dialect: Dialect, sink: DiagnosticSink, it: Interpreter, parser: Parser,
                  include_dirs: tuple[str, ...] = (), max_steps: int = 5_000_000) -> None:
         self.dialect = dialect
-        self.sink = ControllerSink(sink, ControllerTexts(dialect.raw.get("errors", {})))
-        it.sink = self.sink
+        self.sink = ControllerSink(sink, ControllerTexts(dialect.raw.get("errors", {})))  # the run's (see run)
         self.it = it
         self.parser = parser
         self.params = Parameters(system=self._system)
@@ -101,6 +85,10 @@ class LinuxcncExecutor:
 
     # ---- running
     def run(self, src: SourceFile) -> Iterator[Command]:
+        with self.it.redirect(sink=self.sink):  # the interpreter reports in the controller's words too
+            yield from self._run(src)
+
+    def _run(self, src: SourceFile) -> Iterator[Command]:
         index = FlowIndex.build(list(self.parser.blocks(src)), src, self.sink)
         if index is None:
             return
