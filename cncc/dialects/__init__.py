@@ -16,6 +16,7 @@ from importlib import resources
 from typing import Any, TypeVar
 
 from cncc.dialects.detection import DetectError, Detection, parse_detection
+from cncc.dialects.lexicon import Lexicon, LexiconError, parse_lexicon
 
 _T = TypeVar("_T")
 
@@ -80,6 +81,8 @@ class Dialect:
     frontend: str = "fanuc"
     # Detection marks (``[detect]``: extension points, compiled rules), read when the dialect loads.
     detection: Detection = field(default_factory=lambda: Detection({}, ()))
+    # Keywords (statements, functions, word operators, executor marks): cncc/dialects/lexicon.py.
+    lexicon: Lexicon = field(default_factory=Lexicon)
     # Tables derived from this dialect's data (compiled regexes ...), built on first use by
     # :meth:`derived`.  They live on the object, never in a module-level cache keyed by
     # ``name``: a user dialect file may share a built-in dialect's name (decisions 2026-12-01).
@@ -190,7 +193,15 @@ def parse_dialect(raw: dict[str, Any]) -> Dialect:
         unsupported={_unsupported_key(str(k)): str(v) for k, v in raw.get("unsupported", {}).items()},
         frontend=_frontend(raw),
         detection=_detection(name, raw),
+        lexicon=_lexicon(raw),
     )
+
+
+def _lexicon(raw: dict[str, Any]) -> Lexicon:
+    try:
+        return parse_lexicon(str(raw.get("grammar", "fanuc")), raw)
+    except LexiconError as exc:
+        raise DialectError(str(exc)) from None
 
 
 def _detection(name: str, raw: dict[str, Any]) -> Detection:
