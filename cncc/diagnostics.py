@@ -259,6 +259,9 @@ SETTING_ORIGIN = _define("N0907", N, "-v: where a setting came from (command lin
 BAD_PROJECT_CONFIG = _define("E0908", E, "a cncc.toml project file is malformed")
 NUMPY_WARNING = _define("W0909", W, "a numerical warning (overflow, invalid value) raised while computing")
 
+# dialect data (E0940-E0944)
+UNKNOWN_FRONT_END = _define("E0940", E, "the dialect file names a front end that is not registered")
+
 # --- E0995-E0999: program libraries (cncc batch) ---------------------------------
 BATCH_NO_PROGRAMS = _define("E0995", E, "batch: no program file matches the given folders and patterns")
 BATCH_TIME_LIMIT = _define("E0996", E, "batch: a program ran over its time limit")
