@@ -21,8 +21,9 @@ from cncc.diagnostics import DiagnosticSink, Related
 from cncc.dialects import Dialect
 from cncc.dialects.errors import ControllerSink, ControllerTexts
 from cncc.frontend.interp import Interpreter
-from cncc.frontend.linuxcnc.builder import oword_of
+from cncc.frontend.linuxcnc.control import run_oword
 from cncc.frontend.linuxcnc.evaluate import EvalError, Evaluator, Parameters, Scope
+from cncc.frontend.linuxcnc.fastblock import run_plain
 from cncc.frontend.linuxcnc.flow import FlowIndex
 from cncc.frontend.linuxcnc.frames import Frame as Frame  # re-exported
 from cncc.frontend.linuxcnc.report import Before, Reporter
@@ -32,6 +33,7 @@ from cncc.ir import Command, Message
 from cncc.source import SourceFile, Span
 
 _MESSAGE = re.compile(r"^\(\s*(MSG|DEBUG|PRINT|ABORT)\s*,(.*)\)$", re.IGNORECASE | re.DOTALL)
+FAST_MOVES = True  # plain moves take cncc.frontend.linuxcnc.fastblock's path (tests turn it off)
 _PARAM_IN_TEXT = re.compile(r"#\s*<[^>]*>|#\d+")
 
 
@@ -59,6 +61,7 @@ class LinuxcncExecutor:
         self.line = 0  # the line of the block running (#<_line>)
         self.out: list[Command] = []
         self.stopped = False
+        self.fast = FAST_MOVES
 
     # ---- diagnostics
     def fail(self, code: str, span: Span, message: str, detail: str = "") -> None:
@@ -147,10 +150,8 @@ class LinuxcncExecutor:
             return
         errors = self.sink.errors
         try:
-            oword = oword_of(block.statements)
+            oword = fr.index.owords.get(i)
             if oword is not None:
-                from cncc.frontend.linuxcnc.control import run_oword
-
                 run_oword(self, fr, i, oword)
             else:
                 self._block(fr, block)
@@ -160,7 +161,13 @@ class LinuxcncExecutor:
             self.stopped = True
 
     def _block(self, fr: Frame, block: Block) -> None:
-        words = self._drop_g80(tuple(self._value_word(w) for w in block.words))
+        words = tuple(self._value_word(w) for w in block.words)
+        if self.fast:
+            plain = run_plain(self.it, block, words)
+            if plain is not None:
+                self.out.extend(plain)
+                return
+        words = self._drop_g80(words)
         sets = [(s.target, self.ev.number(s.expr)) for s in block.statements if isinstance(s, Assign)]
         for target, value in sets:
             if target.index is None:
