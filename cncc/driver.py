@@ -12,6 +12,7 @@ import shutil
 import sys
 from collections.abc import Callable, Iterable, Iterator
 from dataclasses import dataclass, field
+from functools import partial
 from typing import IO, Any, TextIO
 
 from cncc import diagnostics as dg
@@ -533,8 +534,9 @@ def compile_files(opts: Options, stdin: TextIO | None = None) -> Result:
                 pass
             continue
         row = f"backend (--emit={opts.emit})"
-        chunks.extend(manager.timed(manager.call(row, lambda: run_backend(
-            cmds, src, sources, dialect, machine, opts, sink, keep_runs=result.runs, manager=manager)), row))
+        backend = partial(run_backend, cmds, src, sources, dialect, machine, opts, sink, keep_runs=result.runs,
+                          manager=manager)
+        chunks.extend(manager.timed(manager.call(row, backend), row))
     result.output = "".join(chunks)
     result.pass_report = pass_report(ins, opts, sink)
     return result

@@ -51,13 +51,12 @@ class Checker:
     def check(self, cmds: Iterable[Command]) -> Iterator[Command]:
         last: Vec6 | None = None
         offsets_gone = "to-machine" in self.ran
-        identity = MACHINE_FRAME_PASSES <= self.ran
-        frames_ok: set[int] = set()
+        identity = self.ran >= MACHINE_FRAME_PASSES
+        frames_ok: dict[int, Frame] = {}  # frames already checked (shared records; held, so ids stay theirs)
         for c in cmds:
             self._span(c)
-            if offsets_gone and id(c.frame) not in frames_ok:
-                if self._frame(c, c.frame, identity):
-                    frames_ok.add(id(c.frame))
+            if offsets_gone and frames_ok.get(id(c.frame)) is not c.frame and self._frame(c, c.frame, identity):
+                frames_ok[id(c.frame)] = c.frame
             if isinstance(c, _MOTIONS):
                 start = add_offsets(c.start, c.frame)
                 if last is not None and any(abs(a - b) > TOLERANCE_MM for a, b in zip(start, last, strict=True)):
