@@ -14,8 +14,8 @@ objects: it reads :func:`registered` by name; :mod:`cncc.pipeline.manager` runs 
 from __future__ import annotations
 
 from collections.abc import Iterable, Iterator
-from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any, ClassVar
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, ClassVar
 
 from cncc.diagnostics import DiagnosticSink
 from cncc.dialects import Dialect
@@ -35,7 +35,6 @@ class PassContext:
     sink: DiagnosticSink
     dialect: Dialect | None = None
     machine: MachineModel | None = None
-    options: dict[str, Any] = field(default_factory=dict)
     trajectory: Trajectory | None = None
     plan_level: int = 2
     plan_how: str = ""
@@ -69,7 +68,8 @@ def registered() -> dict[str, type[Pass]]:
 
 
 def run_pipeline(passes: Iterable[Pass], cmds: Iterable[Command], ctx: PassContext) -> Iterator[Command]:
-    """Chain the passes lazily: each consumes the previous one's stream."""
+    """Chain the passes lazily: each consumes the previous one's stream (for the unit tests of
+    single passes; the compiler runs its passes through :class:`cncc.pipeline.manager.PassManager`)."""
     stream: Iterable[Command] = cmds
     for p in passes:
         stream = p.run(stream, ctx)
