@@ -367,8 +367,9 @@ def pass_report(ins: Any, opts: Options, sink: DiagnosticSink) -> str:
     ins.finish()
     dumps = "".join(ins.dumps)
     text = ""
-    if opts.print_file and opts.print_after:
-        write_output(dumps, opts.print_file, opts.inputs, sink)
+    if opts.print_file and opts.print_after:  # kept with errors too: --verify-each finds them
+        write_stream(opts.print_file, opts.inputs, sink, lambda fh: fh.write(dumps.encode("utf-8")),
+                     keep_on_errors=True)
     else:
         text += dumps
     if opts.time_passes:
@@ -710,9 +711,10 @@ def reversal_events(traj: Any, machine: MachineModel, opts: Options) -> tuple[tu
 
 
 # ---- outputs ---------------------------------------------------------------------------------
-def write_stream(path: str, inputs: list[str], sink: DiagnosticSink, write: Callable[[IO[bytes]], Any]) -> bool:
+def write_stream(path: str, inputs: list[str], sink: DiagnosticSink, write: Callable[[IO[bytes]], Any],
+                 keep_on_errors: bool = False) -> bool:
     """Stream ``write(binary file)`` into ``path`` (atomically for regular files, in place for devices and
-    FIFOs: :mod:`cncc.outfile`); nothing is kept if errors were reported."""
+    FIFOs: :mod:`cncc.outfile`); nothing is kept if errors were reported (unless ``keep_on_errors``)."""
     real = os.path.realpath(path)
     if any(inp != "-" and os.path.exists(inp) and os.path.realpath(inp) == real for inp in inputs):
         sink.emit(dg.OUTPUT_IS_INPUT, NO_SPAN, f"refusing to overwrite the input file {path}")
@@ -720,7 +722,7 @@ def write_stream(path: str, inputs: list[str], sink: DiagnosticSink, write: Call
     from cncc.outfile import write_file
 
     try:
-        return write_file(path, write, lambda: not sink.has_errors)
+        return write_file(path, write, lambda: keep_on_errors or not sink.has_errors)
     except OSError as exc:
         sink.emit(dg.CANNOT_WRITE, NO_SPAN, f"cannot write {path}: {exc.strerror or exc}")
         return False

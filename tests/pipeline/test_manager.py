@@ -224,3 +224,14 @@ def test_a_bad_spec_on_the_command_line_exits_2(capsys: pytest.CaptureFixture[st
     assert "E0991" in err and "arc-check" in err and "cutter-comp" in err
     assert main([str(src), "-x", "syntec", "--print-after=nope"]) == 2
     assert "E0991" in capsys.readouterr().err
+
+
+def test_the_print_file_is_kept_when_a_pass_broke_the_ir(monkeypatch: pytest.MonkeyPatch, tmp_path: Path) -> None:
+    _inject(monkeypatch, DropSecondMotion(), "expand-cycles")
+    out = tmp_path / "dump.ir"
+    r = compile_text(PROGRAM, emit="canon", verify_each=True, print_after=("polar",), print_file=str(out))
+    assert "E0992" in codes(r)
+    dump = out.read_text(encoding="utf-8")
+    assert dump.startswith("; *** IR Dump After polar")
+    assert "<stdin>:2:1: Linear(" not in dump  # the dropped motion (the second: after the G00)
+    assert "<stdin>:3:1: Linear(" in dump
