@@ -22,9 +22,12 @@ from cncc.diagnostics import DiagnosticSink, Related
 from cncc.dialects import Dialect
 from cncc.dialects.errors import ControllerSink, ControllerTexts
 from cncc.frontend.interp import Interpreter
+from cncc.frontend.linuxcnc import g76 as _g76  # noqa: F401  (registers G76)
 from cncc.frontend.linuxcnc.builder import oword_of
 from cncc.frontend.linuxcnc.evaluate import EvalError, Evaluator, Parameters, Scope
 from cncc.frontend.linuxcnc.flow import FlowIndex
+from cncc.frontend.linuxcnc.g7x import cycle_word, run_g7x
+from cncc.frontend.linuxcnc.lathe import block_words
 from cncc.frontend.linuxcnc.report import Before, Reporter
 from cncc.frontend.parser import Parser
 from cncc.frontend.syntax import Assign, Block, CommentItem, Word
@@ -75,6 +78,7 @@ class LinuxcncExecutor:
         self.line = 0  # the line of the block running (#<_line>)
         self.out: list[Command] = []
         self.stopped = False
+        self.capture: list[tuple[Span, tuple[Word, ...]]] | None = None  # a G7x profile being read (g7x.py)
 
     # ---- diagnostics
     def fail(self, code: str, span: Span, message: str, detail: str = "") -> None:
@@ -179,6 +183,13 @@ class LinuxcncExecutor:
                 self.params.write_name(target.name, value)
             else:
                 self.params.write_number(self.ev.var_number(target), value)
+        words = block_words(self.it, words, capture=self.capture is not None)  # G7: X is a diameter
+        if self.capture is not None:  # the profile of a G70-G72: its moves are collected, not run
+            self.capture.append((fr.index.span(block), words))
+            return
+        if (g7x := cycle_word(words)) is not None:
+            run_g7x(self, fr, block, words, g7x)
+            return
         comments = self._messages(fr, block)
         m98 = [w for w in words if w.letter == "M" and round(w.value) in (98, 99)]
         if m98:
