@@ -21,6 +21,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 TOLERANCE = 1e-4
+TIMEOUT_S = 20.0  # rs274 runs a generated program in well under a second
+TIMED_OUT = "rs274 did not finish (timed out)"
 WRAPPER_DEFAULT = Path(os.environ.get("XDG_CACHE_HOME", Path.home() / ".cache")) / "cncc" / "rs274" / "bin" / "rs274"
 
 COMPARED = frozenset({
@@ -78,8 +80,12 @@ def run_rs274(text: str, tool_table: str = "", *, exe: Path | None = None) -> Ru
         tbl = Path(tmp) / "tool.tbl"
         tbl.write_text(tool_table)
         for _ in range(3):  # rs274 now and then exits non-zero without a message: run it again
-            p = subprocess.run([str(exe), "-t", str(tbl), "-g", str(prog)], capture_output=True, text=True,
-                               timeout=30, cwd=tmp)
+            try:
+                p = subprocess.run([str(exe), "-t", str(tbl), "-g", str(prog)], capture_output=True, text=True,
+                                   timeout=TIMEOUT_S, cwd=tmp)
+            except subprocess.TimeoutExpired as exc:  # an endless loop of rs274 (its G71 bug): no verdict
+                out = exc.stdout.decode(errors="replace") if isinstance(exc.stdout, bytes) else (exc.stdout or "")
+                return Run(False, parse_trace(out), TIMED_OUT)
             err_lines = [ln for ln in p.stderr.splitlines() if ln.strip() and ln.strip() != "executing"]
             if p.returncode == 0 or err_lines:
                 break

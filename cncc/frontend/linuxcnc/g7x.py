@@ -40,12 +40,24 @@ def _value(words: tuple[Word, ...], letter: str) -> float | None:
     return next((w.value for w in words if w.letter == letter), None)
 
 
+def _program_units(mm: float, k: float) -> float:
+    """A position in the program's unit.  cncc keeps positions in mm; rs274 keeps the inch value it read, so an
+    inch position is rounded back to it (a one-segment profile's offset side hangs on the last bit)."""
+    return mm if k == 1.0 else round(mm / k, 10)
+
+
 def run_g7x(ex: LinuxcncExecutor, fr: Frame, block: Block, words: tuple[Word, ...], g: Word) -> None:
     it = ex.it
     span = fr.index.span(block)
     tenths = round(g.value * 10)
     cycle, sub = divmod(tenths, 10)
     name = f"G{cycle}.{sub}"
+    letters = [w.letter for w in words if w.letter not in "GM"]
+    twice = next((w for w in words if w.letter not in "GM" and letters.count(w.letter) > 1), None)
+    if twice is not None:
+        ex.fail(dg.REPEATED_WORD, Span(span.source_id, twice.start, twice.end),
+                f"Multiple {twice.letter.lower()} words on one line")
+        return
     q = _value(words, "Q")
     if q is None:
         ex.fail(dg.LATHE_CYCLE_WORDS, span, "G7x.x  requires a Q word")
@@ -57,8 +69,9 @@ def run_g7x(ex: LinuxcncExecutor, fr: Frame, block: Block, words: tuple[Word, ..
         ex.fail(dg.LATHE_CYCLE_STATE, span, f"{name} can only be used in XZ plane (G18)")
         return
     k = it.frame.units.mm_per_unit
-    incremental = it.modal.incremental
-    x, z = it.pos[0] / k, it.pos[2] / k
+    tenths = [round(w.value * 10) for w in words if w.letter == "G"]
+    incremental = 910 in tenths or (it.modal.incremental and 900 not in tenths)  # the block's own G90/G91 first
+    x, z = _program_units(it.pos[0], k), _program_units(it.pos[2], k)
     xw, zw = _value(words, "X"), _value(words, "Z")
     if xw is not None:
         x = x + xw if incremental else xw

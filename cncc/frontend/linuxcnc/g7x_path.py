@@ -183,7 +183,8 @@ class Straight(Segment):
         out.straight_move(self.end)
 
     def offset(self, distance: float) -> None:
-        d = 1j * distance * _unit(self.start - self.end)
+        v = self.start - self.end
+        d = _div(1j * distance * v, abs(v))  # LinuxCNC's order of rounding
         self.start += d
         self.end += d
 
