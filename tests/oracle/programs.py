@@ -364,7 +364,8 @@ def lathe_modes(rng: random.Random) -> Program:
             diameter = mode == "G7 "
         scale = 2 if diameter else 1
         if c < 0.4:
-            out.append(f"{mode}{rng.choice(['G0', 'G1'])} X{num(rng.uniform(-30, 30) * k)} Z{num(rng.uniform(-20, 5) * k)}")
+            g = rng.choice(["G0", "G1"])
+            out.append(f"{mode}{g} X{num(rng.uniform(-30, 30) * k)} Z{num(rng.uniform(-20, 5) * k)}")
         elif c < 0.55:
             out.append(f"{mode}G91 G1 X{num(rng.uniform(-5, 5) * k)}")
             out.append("G90")
@@ -432,8 +433,8 @@ def lathe_roughing(rng: random.Random) -> Program:
     out = [f"{u} G18 G90 F{num(150 * k)}", "o100 sub", *lines, "o100 endsub"]
     if rng.random() < 0.15:
         out.append("G7")
-        out[2:2 + len(lines)] = [" ".join(w if not w.startswith("X") else "X" + num(float(w[1:]) * 2) for w in ln.split())
-                                 for ln in lines]
+        out[2:2 + len(lines)] = [" ".join(w if not w.startswith("X") else "X" + num(float(w[1:]) * 2)
+                                          for w in ln.split()) for ln in lines]
         sx *= 2
     out.append(f"G0 X{num(sx * k)} Z{num(sz * k)}")
     words = [cycle, "Q100"]
@@ -463,10 +464,12 @@ def threading(rng: random.Random) -> Program:
     out.append(f"G0 X{num(x0)} Z{num(z0)}")
     j = rng.uniform(0.02, 0.3) * k
     kk = j * rng.uniform(1.5, 12)
-    words = ["G76", f"P{num(rng.uniform(0.5, 3) * k)}", f"Z{num(z0 + rng.choice([-1, -1, -1, 1]) * rng.uniform(5, 30) * k)}",
+    z1 = z0 + rng.choice([-1, -1, -1, 1]) * rng.uniform(5, 30) * k
+    words = ["G76", f"P{num(rng.uniform(0.5, 3) * k)}", f"Z{num(z1)}",
              f"I{num(rng.choice([-1, -1, 1]) * rng.uniform(0.1, 2) * k)}", f"J{num(j)}", f"K{num(kk)}"]
-    for letter, value in (("R", num(rng.uniform(0.8, 2.5))), ("Q", num(rng.choice([0, 29, 29.5, 30, 45]))),
-                          ("H", str(rng.randint(0, 3))), ("E", num(rng.uniform(0, 2) * k)), ("L", str(rng.randint(0, 3)))):
+    optional = (("R", num(rng.uniform(0.8, 2.5))), ("Q", num(rng.choice([0, 29, 29.5, 30, 45]))),
+                ("H", str(rng.randint(0, 3))), ("E", num(rng.uniform(0, 2) * k)), ("L", str(rng.randint(0, 3))))
+    for letter, value in optional:
         if rng.random() < 0.5:
             words.append(letter + value)
     if rng.random() < 0.08:  # a deliberate error: K not above J, J not positive, I zero, no P

@@ -49,8 +49,7 @@ def _program_units(mm: float, k: float) -> float:
 def run_g7x(ex: LinuxcncExecutor, fr: Frame, block: Block, words: tuple[Word, ...], g: Word) -> None:
     it = ex.it
     span = fr.index.span(block)
-    tenths = round(g.value * 10)
-    cycle, sub = divmod(tenths, 10)
+    cycle, sub = divmod(round(g.value * 10), 10)
     name = f"G{cycle}.{sub}"
     letters = [w.letter for w in words if w.letter not in "GM"]
     twice = next((w for w in words if w.letter not in "GM" and letters.count(w.letter) > 1), None)
@@ -167,8 +166,6 @@ class _Emitter:
 def _collect(ex: LinuxcncExecutor, fr: Frame, span: Span, label: str, start: complex,
              incremental: bool) -> list[Segment] | None:
     """Run subroutine ``o<label>`` collecting its moves as profile segments (None after an error)."""
-    from cncc.frontend.linuxcnc.executor import Frame as RunFrame
-
     found = fr.index.subs.get(label)
     index = fr.index
     if found is None:
@@ -179,7 +176,7 @@ def _collect(ex: LinuxcncExecutor, fr: Frame, span: Span, label: str, start: com
         index, found = loaded, loaded.subs[label]
     depth = len(ex.stack)
     ex.push_scope([])
-    ex.stack.append(RunFrame(index, found[0] + 1, label, fr.pc, fr, span))
+    ex.stack.append(type(fr)(index, found[0] + 1, label, fr.pc, fr, span))  # executor.Frame: no import circle
     taken: list[tuple[Span, tuple[Word, ...]]] = []
     ex.capture = taken
     try:
