@@ -382,7 +382,8 @@ def _line_then_arc(p: Straight, s: Round) -> None:
         return
     rot = _unit(p.start - p.end).conjugate()
     pe, pc = (s.end - p.end) * rot, (s.center - p.end) * rot
-    b = abs(pc - pe) ** 2 - pc.imag * pc.imag
+    n = abs(pc - pe)
+    b = n * n - pc.imag * pc.imag  # std::norm is |z| squared
     b = math.sqrt(b) if b >= 0 else 0.0
     s1, s2 = _div(pc.real + b, rot) + p.end, _div(pc.real - b, rot) + p.end
     s.start = p.end = s1 if abs(s.start - s1) < abs(s.start - s2) else s2
@@ -394,7 +395,8 @@ def _arc_then_line(p: Round, s: Straight) -> None:
         return
     rot = _unit(s.start - s.end).conjugate()
     pe, pc = (p.end - s.end) * rot, (p.center - s.end) * rot
-    b = abs(pc - pe) ** 2 - pc.imag * pc.imag
+    n = abs(pc - pe)
+    b = n * n - pc.imag * pc.imag  # std::norm is |z| squared
     b = math.sqrt(b) if b >= 0 else 0.0
     s1, s2 = _div(pc.real + b, rot) + s.end, _div(pc.real - b, rot) + s.end
     s.start = p.end = s1 if abs(s.start - s1) < abs(s.start - s2) else s2
@@ -407,7 +409,7 @@ def _arc_then_arc(p: Round, s: Round) -> None:
     cos_b = (c * c + a * a - b * b) / 2.0 / a / c if a and c else math.nan
     cos_b2 = min(cos_b * cos_b, 1.0)
     rot = complex(cos_b, math.sqrt(1 - cos_b2)) if not math.isnan(cos_b2) else _NAN
-    hit = rot * _div(p.center - s.center, c) * a + s.center
+    hit = _div(rot * (p.center - s.center), c) * a + s.center  # LinuxCNC's order of rounding
     p.end = s.start = hit
 
 
