@@ -90,6 +90,7 @@ LATHE: dict[str, str] = {
     "g71_i_zero": _MM + _TURN + "G0 X12 Z3\nG71 Q100 D0.5 I0\nM2\n",
     "g71_not_g18": "G21 G17 F100\n" + _TURN + "G0 X12 Z3\nG71 Q100 D0.5\nM2\n",
     "g71_no_feed": "G21 G18\n" + _TURN + "G0 X12 Z3\nG71 Q100 D0.5\nM2\n",
+    "g71_u_word": _MM + _TURN + "G0 X12 Z3\nG71 Q100 U0.5\nM2\n",
     "g71_word_twice": _MM + _TURN + "G0 X12 Z3\nG71 Q100 I1 I2\nM2\n",
     "g76_external": _SPIN + "G0 X10 Z2\nG76 P1.5 Z-20 I-1 J0.1 K0.9 Q29.5 R1.5 H2\nG0 X15\nM2\n",
     "g76_internal_tapers": _SPIN + "G0 X5 Z2\nG76 P1 Z-12 I0.5 J0.05 K0.6 E1 L3\nG0 Z5\nM2\n",

@@ -394,14 +394,18 @@ def _profile(rng: random.Random, k: float, along_z: bool) -> tuple[list[str], tu
     pts = []
     for _ in range(n):
         lead -= rng.uniform(1, 6)
-        if rng.random() < 0.08:
+        if rng.random() < 0.04:
             lead += rng.uniform(2, 8)  # turns back
         side = max(0.5, side + rng.uniform(-2, 4))
         pts.append((lead, side))
     lines = []
+    g = ""
     for i, (a, b) in enumerate(pts):
         z, x = (a, b) if along_z else (b, a)
+        arc_before = g in ("G2", "G3")
         g = rng.choice(["G1", "G1", "G1", "", "G2", "G3"]) if i else rng.choice(["G1", "G0"])
+        if g == "" and arc_before:
+            g = "G1"  # an arc without R would be an error: the modal arc needs its centre again
         words = [g] if g else []
         words += [f"X{num(x * k)}", f"Z{num(z * k)}"]
         if g in ("G2", "G3"):

@@ -57,6 +57,11 @@ def run_g7x(ex: LinuxcncExecutor, fr: Frame, block: Block, words: tuple[Word, ..
         ex.fail(dg.REPEATED_WORD, Span(span.source_id, twice.start, twice.end),
                 f"Multiple {twice.letter.lower()} words on one line")
         return
+    axis_uw = next((w for w in words if w.letter in "UW"), None)
+    if axis_uw is not None:  # rs274 (and a lathe configuration) has no U/W axes; the profile may use U/W
+        ex.fail(dg.SYNTAX, Span(span.source_id, axis_uw.start, axis_uw.end),
+                f"Bad character '{axis_uw.letter.lower()}' used")
+        return
     q = _value(words, "Q")
     if q is None:
         ex.fail(dg.LATHE_CYCLE_WORDS, span, "G7x.x  requires a Q word")
@@ -99,7 +104,6 @@ def run_g7x(ex: LinuxcncExecutor, fr: Frame, block: Block, words: tuple[Word, ..
     p = 1.0 if p is None else p
     r = _value(words, "R")
     r = 0.5 if r is None else r
-    u, w = _value(words, "U") or 0.0, _value(words, "W") or 0.0
     if i <= 0:
         ex.fail(dg.LATHE_CYCLE_WORDS, span, "G7X error: I must be greater than zero.")
         return
@@ -109,7 +113,7 @@ def run_g7x(ex: LinuxcncExecutor, fr: Frame, block: Block, words: tuple[Word, ..
         if cycle == 70:
             path.g70(out, x, z, d, e, p)
         else:
-            path.g71(out, sub, x, z, u, w, d, i, r, rotate=cycle == 72)
+            path.g71(out, sub, x, z, 0.0, 0.0, d, i, r, rotate=cycle == 72)
     except ProfileError as exc:
         ex.fail(dg.LATHE_PROFILE, span, f"G7X error: {exc}")
     except _Stopped:
