@@ -67,7 +67,8 @@ _MM, _SPIN = "G21 G18 F100\n", "G21 G18 S200 M3\n"
 LATHE: dict[str, str] = {
     "g7_same_block": "G21 G18\nG7 G0 X10 Z1\nG8 X10\nG7\nG91 G0 X4\nG90 G8 G0 X3\nM2\n",
     "g7_arc_centre_is_radius": _MM + "G7 G0 X10 Z0\nG2 X10 Z-4 I0 K-2\nM2\n",
-    "g7_read_back": "G21 G18\nG7 G0 X10 Z1\nG0 Z[#<_x>]\nM2\n",
+    "g7_read_back": ("G21 G18\nG7 G0 X10 Z1\nG0 Z[#<_x>]\n"
+                     "G0 Z[#<_lathe_diameter_mode> + 2 * #<_lathe_radius_mode>]\nM2\n"),
     "g71_profile": _MM + _TURN + "G0 X12 Z3\nG71 Q100 D0.5 I1 R0.3\nG0 X20\nM2\n",
     "g71_1_no_pockets": _MM + _POCKET + "G0 X10 Z2\nG71.1 Q100 D0.2 I1\nM2\n",
     "g71_2_pockets_only": _MM + _POCKET + "G0 X10 Z2\nG71.2 Q100 D0.2 I1\nM2\n",

@@ -27,7 +27,7 @@ from cncc.frontend.linuxcnc.builder import oword_of
 from cncc.frontend.linuxcnc.evaluate import EvalError, Evaluator, Parameters, Scope
 from cncc.frontend.linuxcnc.flow import FlowIndex
 from cncc.frontend.linuxcnc.g7x import cycle_word, run_g7x
-from cncc.frontend.linuxcnc.lathe import block_words
+from cncc.frontend.linuxcnc.lathe import block_words, diameter_mode
 from cncc.frontend.linuxcnc.report import Before, Reporter
 from cncc.frontend.parser import Parser
 from cncc.frontend.syntax import Assign, Block, CommentItem, Word
@@ -100,6 +100,7 @@ class LinuxcncExecutor:
             "_feed": it.modal.feed or 0.0, "_rpm": it.modal.spindle_rpm,
             "_current_tool": float(it.modal.tool_loaded), "_selected_tool": float(it.modal.tool_selected),
             "_value": 0.0, "_value_returned": 0.0, "_line": float(self.line),
+            "_lathe_diameter_mode": float(diameter_mode(it)), "_lathe_radius_mode": float(not diameter_mode(it)),
         }
         return values.get(name)
 

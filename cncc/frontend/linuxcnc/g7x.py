@@ -19,7 +19,8 @@ from typing import TYPE_CHECKING
 
 from cncc import diagnostics as dg
 from cncc.frontend.linuxcnc.builder import oword_of
-from cncc.frontend.linuxcnc.g7x_path import Path, ProfileError, Round, Segment, Straight, corner
+from cncc.frontend.linuxcnc.g7x_path import Path
+from cncc.frontend.linuxcnc.g7x_segments import ProfileError, Round, Segment, Straight, corner
 from cncc.frontend.syntax import Block, Word
 from cncc.ir import CompSide, Plane
 from cncc.source import Span
