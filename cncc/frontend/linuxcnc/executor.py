@@ -21,9 +21,8 @@ from cncc.diagnostics import DiagnosticSink, Related
 from cncc.dialects import Dialect
 from cncc.dialects.errors import ControllerSink, ControllerTexts
 from cncc.frontend.interp import Interpreter
-from cncc.frontend.linuxcnc.control import run_oword
 from cncc.frontend.linuxcnc import g76 as _g76  # noqa: F401  (registers G76)
-from cncc.frontend.linuxcnc.builder import oword_of
+from cncc.frontend.linuxcnc.control import run_oword
 from cncc.frontend.linuxcnc.evaluate import EvalError, Evaluator, Parameters, Scope
 from cncc.frontend.linuxcnc.fastblock import run_plain
 from cncc.frontend.linuxcnc.flow import FlowIndex
