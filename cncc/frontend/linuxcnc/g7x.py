@@ -47,7 +47,7 @@ def _program_units(mm: float, k: float) -> float:
     return mm if k == 1.0 else round(mm / k, 10)
 
 
-def run_g7x(ex: LinuxcncExecutor, fr: Frame, block: Block, words: tuple[Word, ...], g: Word) -> None:
+def run_g7x(ex: LinuxcncExecutor, fr: Frame, block: Block, words: tuple[Word, ...], g: Word) -> None:  # noqa: C901 - split by its owner (lathe)
     it = ex.it
     span = fr.index.span(block)
     cycle, sub = divmod(round(g.value * 10), 10)
@@ -204,7 +204,7 @@ def _collect(ex: LinuxcncExecutor, fr: Frame, span: Span, label: str, start: com
     return _profile(ex, taken, start, incremental)
 
 
-def _profile(ex: LinuxcncExecutor, taken: list[tuple[Span, tuple[Word, ...]]], start: complex,
+def _profile(ex: LinuxcncExecutor, taken: list[tuple[Span, tuple[Word, ...]]], start: complex,  # noqa: C901
              incremental: bool) -> list[Segment] | None:
     from cncc.frontend.linuxcnc.lathe import diameter_mode
     from cncc.frontend.rs274 import state
