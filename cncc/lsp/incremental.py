@@ -121,8 +121,9 @@ def eligible(text: str, dialect: Dialect) -> bool:
     resumes follow the very path the compiler takes)."""
     from cncc.frontend.fastpath import is_straight_line
     from cncc.frontend.macro.remap import remaps_cycles
+    from cncc.frontend.plugins import front_end
 
-    if dialect.raw.get("checker") or dialect.macro_flavour == "linuxcnc":
+    if not front_end(dialect).fast_path:
         return False
     return is_straight_line(text, dialect) and not remaps_cycles(dialect)
 

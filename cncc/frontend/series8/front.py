@@ -1,6 +1,6 @@
 """The SERIES 8 block loop: parse, interpret, insert corners.
 
-``lower_series8`` is what :func:`cncc.frontend.dialect_front.lower_checked` runs for
+``lower_series8`` is what the ``series8`` front end (:mod:`cncc.frontend.plugins`) runs for
 the ``series8`` dialect.  Around each block it:
 
 * refuses in strict mode what the manual never shows ('%', '/', O words, ( )
