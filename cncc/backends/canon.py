@@ -181,7 +181,7 @@ def _folded_fields(c: SetMode) -> dict[str, Any]:
     return {"points": points, "order": order}
 
 
-def _set_mode(c: SetMode, last_g5x: str, last_g92: str, fmt: CanonFormat) -> Iterator[str]:  # noqa: C901 - split by its owner (lparams) after the checkpoint
+def _set_mode(c: SetMode, last_g5x: str, last_g92: str, fmt: CanonFormat) -> Iterator[str]:
     frame = c.frame
     k = frame.units.mm_per_unit
     if c.name == "plane":
@@ -189,11 +189,7 @@ def _set_mode(c: SetMode, last_g5x: str, last_g92: str, fmt: CanonFormat) -> Ite
     elif c.name == "units":
         yield PREFIX + f"USE_LENGTH_UNITS({_UNITS[frame.units]})"
     elif c.name in ("g5x_offset", "g92_offset", "g52_offset"):
-        g5x, g92 = _offsets(frame)
-        if c.name == "g5x_offset" or g5x != last_g5x:
-            yield PREFIX + g5x
-        if g92 != last_g92 or c.name != "g5x_offset":
-            yield PREFIX + g92
+        yield from _offset_lines(c, last_g5x, last_g92)
     elif c.name == "tool_length_offset":
         yield from _lines(fmt, "tool_length_offset", z=frame.tool_length_mm / k)
     elif c.name == "xy_rotation":
@@ -215,6 +211,15 @@ def _set_mode(c: SetMode, last_g5x: str, last_g92: str, fmt: CanonFormat) -> Ite
         yield from _lines(fmt, "feed_override_on" if c.value else "feed_override_off")
     elif c.name == "spindle_mode":
         yield from _lines(fmt, "spindle_mode", css_max=float(c.value or 0.0))
+
+
+def _offset_lines(c: SetMode, last_g5x: str, last_g92: str) -> Iterator[str]:
+    """A G5x, G92 or G52 change: the G5x call for a G5x change (or when it differs), the G92 call otherwise."""
+    g5x, g92 = _offsets(c.frame)
+    if c.name == "g5x_offset" or g5x != last_g5x:
+        yield PREFIX + g5x
+    if g92 != last_g92 or c.name != "g5x_offset":
+        yield PREFIX + g92
 
 
 def _path_mode(c: SetMode, fmt: CanonFormat) -> Iterator[str]:
