@@ -22,6 +22,8 @@ from typing import TYPE_CHECKING
 from cncc import diagnostics as dg
 from cncc.diagnostics import DiagnosticSink
 from cncc.dialects import CodeDef, Dialect, code_name, code_tenths
+from cncc.frontend import catalogue
+from cncc.frontend.catalogue import m_group
 from cncc.frontend.modal import ModalState, Reference
 from cncc.frontend.syntax import Block, Word
 from cncc.frontend.words import WordReader
@@ -42,29 +44,11 @@ from cncc.source import Span
 if TYPE_CHECKING:
     from cncc.frontend.ops import HandlerTable
 
-# Execution order of the ops within one block (lower runs first).
-ORDER: dict[str, int] = {
-    "feed_per_min": 10, "feed_per_rev": 10, "inverse_time": 10,
-    "dwell": 40,
-    "plane_xy": 50, "plane_zx": 50, "plane_yz": 50,
-    "inch": 55, "metric": 55,
-    "comp_off": 60, "comp_left": 60, "comp_right": 60,
-    "length_plus": 65, "length_minus": 65, "length_off": 65,
-    "work": 70,
-    "exact_stop_mode": 75, "curve_mode": 75, "tapping_mode": 75, "continuous_mode": 75, "exact_stop_once": 75,
-    "absolute": 80, "incremental": 80,
-    "return_initial": 85, "return_r": 85,
-    "css_on": 86, "css_off": 86,
-    "polar_on": 87, "polar_off": 87, "scale_on": 87, "scale_off": 87, "mirror_on": 87, "mirror_off": 87,
-    "rotate_on": 88, "rotate_off": 88,
-}
-DEFAULT_ORDER = 90  # non-modal and motion codes
+# Execution order of the ops within one block (lower runs first): the op catalogue's.
+ORDER = catalogue.ORDER
+DEFAULT_ORDER = catalogue.DEFAULT_ORDER  # non-modal and motion codes
 AXIS_LETTERS = "XYZABC"
 AXIS_INDEX = {c: i for i, c in enumerate(AXIS_LETTERS)}
-# Ops that take the block's axis words for themselves (so no motion happens).
-AXIS_CONSUMERS = frozenset({"home", "home2", "home_return", "set_origin", "local_offset", "data_input",
-                            "dwell", "scale_on", "mirror_on", "mirror_off", "rotate_on", "tool_measure",
-                            "tool_measure2", "macro_call", "modal_call"})
 MODAL_FREE_GROUPS = frozenset({"non_modal"})
 _OFF_AT_POWER_ON = frozenset({"scaling", "mirror", "rotation", "polar", "cutter_comp", "length_comp", "modal_macro",
                               "cycle"})
@@ -260,7 +244,7 @@ class Interpreter:
                     continue
                 if letter == "M":
                     m_count += 1
-                    group = "m:" + _m_group(cdef.op)
+                    group = "m:" + m_group(cdef.op)
                 else:
                     group = cdef.group
                 prev = groups.get(group)
@@ -332,19 +316,6 @@ def _hold_after_cancel(old: Frame, new: Frame) -> Frame:
         return new
     held = tuple(a or b for a, b in zip(new.held_axes, LINEAR_HELD, strict=True))
     return replace(new, held_axes=held, after_cancel=True)  # type: ignore[arg-type]
-
-
-def _m_group(op: str) -> str:
-    if op.startswith("spindle"):
-        return "spindle"
-    if op.startswith("coolant"):
-        return "coolant"
-    if op in ("program_stop", "optional_stop", "program_end", "program_end_rewind", "subprogram_call",
-              "subprogram_return"):
-        return "stop"
-    if op == "tool_change":
-        return "tool"
-    return "other"
 
 
 def _comment_text(text: str) -> str | None:
