@@ -409,20 +409,17 @@ class Parser:
     # ---- fast path
     def _plain_block(self, line: str, base: int, line_no: int, cpos: int, comment: str) -> sx.Block:
         body = line[:cpos] if comment else line
-        words = tuple(
-            sx.Word(
-                m.group(1).upper(),
-                -float(m.group(3)) if m.group(2) == "-" else float(m.group(3)),
-                "." in m.group(3),
-                base + m.start(),
-                base + m.end(),
-            )
-            for m in _WORD_RE.finditer(body)
-        )
+        word = sx.Word
+        words = []
+        for m in _WORD_RE.finditer(body):
+            letter, sign, digits = m.groups()
+            start, end = m.span()
+            words.append(word(letter.upper(), -float(digits) if sign == "-" else float(digits), "." in digits,
+                              base + start, base + end))
         comments: tuple[sx.CommentItem, ...] = ()
         if comment:
             comments = (sx.CommentItem(comment, base + cpos, base + cpos + len(comment)),)
-        return sx.Block(line_no, base, base + len(line.rstrip("\r")), words, comments)
+        return sx.Block(line_no, base, base + len(line.rstrip("\r")), tuple(words), comments)
 
     # ---- grammar path
     def _lark_blocks(self, src: SourceFile, line: str, base: int, line_no: int) -> Iterator[sx.Block]:

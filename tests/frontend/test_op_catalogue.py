@@ -50,10 +50,11 @@ def test_the_catalogue_names_only_ops_the_dialects_use() -> None:
 
 
 def test_the_readers_take_the_catalogues_tables() -> None:
-    from cncc.frontend import interp, ops
+    from cncc.frontend import handler_tables, interp, ops, registry
     from cncc.frontend.macro import executor
 
-    assert interp.ORDER is catalogue.ORDER and interp.DEFAULT_ORDER == catalogue.DEFAULT_ORDER
+    assert registry.ORDER is catalogue.ORDER and registry.DEFAULT_ORDER == catalogue.DEFAULT_ORDER
+    assert dict(handler_tables.core_table().order) == dict(catalogue.ORDER)
     assert ops.M_ORDER is catalogue.M_ORDER and ops.AXIS_TAKERS is catalogue.AXIS_TAKERS
     assert executor.EXEC_OPS is catalogue.EXEC_OPS
     assert interp.m_group is catalogue.m_group
