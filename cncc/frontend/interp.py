@@ -23,6 +23,7 @@ from typing import TYPE_CHECKING
 from cncc import diagnostics as dg
 from cncc.diagnostics import DiagnosticSink
 from cncc.dialects import CodeDef, Dialect, code_name, code_tenths
+from cncc.frontend.catalogue import m_group
 from cncc.frontend.modal import ModalState
 from cncc.frontend.registry import DEFAULT_ORDER
 from cncc.frontend.registry import ORDER as ORDER  # re-exported (the in-block order of ops)
@@ -49,10 +50,6 @@ if TYPE_CHECKING:
 
 AXIS_LETTERS = "XYZABC"
 AXIS_INDEX = {c: i for i, c in enumerate(AXIS_LETTERS)}
-# Ops that take the block's axis words for themselves (so no motion happens).
-AXIS_CONSUMERS = frozenset({"home", "home2", "home_return", "set_origin", "local_offset", "data_input",
-                            "dwell", "scale_on", "mirror_on", "mirror_off", "rotate_on", "tool_measure",
-                            "tool_measure2", "macro_call", "modal_call"})
 MODAL_FREE_GROUPS = frozenset({"non_modal"})
 _OFF_AT_POWER_ON = frozenset({"scaling", "mirror", "rotation", "polar", "cutter_comp", "length_comp", "modal_macro",
                               "cycle"})
@@ -289,7 +286,7 @@ class Interpreter:
                     continue
                 if letter == "M":
                     m_count += 1
-                    group = "m:" + _m_group(cdef.op)
+                    group = "m:" + m_group(cdef.op)
                 else:
                     group = cdef.group
                 prev = groups.get(group)
@@ -408,19 +405,6 @@ def _hold_after_cancel(old: Frame, new: Frame) -> Frame:
         return new
     held = tuple(a or b for a, b in zip(new.held_axes, LINEAR_HELD, strict=True))
     return replace(new, held_axes=held, after_cancel=True)  # type: ignore[arg-type]
-
-
-def _m_group(op: str) -> str:
-    if op.startswith("spindle"):
-        return "spindle"
-    if op.startswith("coolant"):
-        return "coolant"
-    if op in ("program_stop", "optional_stop", "program_end", "program_end_rewind", "subprogram_call",
-              "subprogram_return"):
-        return "stop"
-    if op == "tool_change":
-        return "tool"
-    return "other"
 
 
 def _comment_text(text: str) -> str | None:

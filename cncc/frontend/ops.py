@@ -13,7 +13,7 @@ from typing import TYPE_CHECKING
 
 from cncc import diagnostics as dg
 from cncc.dialects import CodeDef
-from cncc.frontend import arcs
+from cncc.frontend import arcs, catalogue
 from cncc.frontend.polar import polar_target
 from cncc.frontend.registry import (
     BLOCK_HOOKS,
@@ -59,8 +59,7 @@ AXES = "XYZABC"
 
 
 # ---- block driver -----------------------------------------------------------------
-_M_ORDER = {"tool_change": 0, "spindle_cw": 1, "spindle_ccw": 1, "spindle_off": 1, "spindle_orient": 1,
-            "coolant_flood": 2, "coolant_mist": 2, "coolant_off": 2, "coolant_mist_off": 2}
+M_ORDER = catalogue.M_ORDER  # M ops that run before the block's G codes (the op catalogue's)
 
 
 def run_block(it: Interpreter, ctx: BlockContext) -> None:
@@ -73,7 +72,7 @@ def run_block(it: Interpreter, ctx: BlockContext) -> None:
     _feed_speed_tool(it, ctx)
     for hook in it.table.block_hooks:
         hook(it, ctx)
-    for c in sorted((m for m in ms if m.op in _M_ORDER), key=lambda m: _M_ORDER[m.op]):
+    for c in sorted((m for m in ms if m.op in M_ORDER), key=lambda m: M_ORDER[m.op]):
         _dispatch(it, ctx, c)
     for c in gs:
         if c not in early:
@@ -83,18 +82,17 @@ def run_block(it: Interpreter, ctx: BlockContext) -> None:
     elif ctx.axis_used and any(k in ctx.words for k in AXES):
         _note_taken_words(it, ctx, gs)
     for c in ms:
-        if c.op not in _M_ORDER:
+        if c.op not in M_ORDER:
             _dispatch(it, ctx, c)
 
 
-_AXIS_TAKERS = frozenset({"set_origin", "local_offset", "data_input", "data_input_rs274", "scale_on", "mirror_on",
-                          "mirror_off", "rotate_on"})
+AXIS_TAKERS = catalogue.AXIS_TAKERS  # ops that take the block's axis words (the op catalogue's)
 
 
 def _note_taken_words(it: Interpreter, ctx: BlockContext, gs: list[CodeDef]) -> None:
     """``G92 X0 G01 Y5``: the axis words are G92's; say so rather than drop the G01's move silently."""
     motion = [c for c in gs if c.group == "motion"]
-    takers = [c for c in gs if c.op in _AXIS_TAKERS]
+    takers = [c for c in gs if c.op in AXIS_TAKERS]
     if motion and takers:
         it.sink.emit(dg.AXIS_WORDS_TAKEN, ctx.span, f"the axis words belong to {takers[0].name}; {motion[0].name} "
                                                      "sets the motion mode but this block does not move")

@@ -49,18 +49,52 @@ def abbreviations(dialect: Dialect) -> tuple[tuple[str, str], ...]:
 
 def _with_abbreviations(line: str, pairs: tuple[tuple[str, str], ...]) -> str:
     """A terminal line ``NAME.p: /A|B/i`` with each word's abbreviation as one more alternative."""
-    if not re.match(r"^[A-Z_]+(\.\d+)?:\s*/", line):
+    if not re.match(r"^(%override )?[A-Z_]+(\.\d+)?:\s*/", line):
         return line
     for word, short in pairs:
         line = re.sub(rf"(?<=[/(|]){word}(?=[/)|])", f"{word}|{short}", line)
     return line
 
 
+_IMPORT_ALL = re.compile(r"^%import (\w+) \(@all\)[ \t]*$", re.MULTILINE)
+_DEFINED = re.compile(r"^\??([A-Za-z_]\w*)(?:\.\d+)?[ \t]*:", re.MULTILINE)
+_ALIAS = re.compile(r"->[ \t]*(\w+)")
+
+
 def grammar_text(family: str, comments: tuple[str, ...], block_end: str,
                  abbreviated: tuple[tuple[str, str], ...] = (), functions: tuple[str, ...] = ()) -> str:
-    """The grammar of ``family`` with the dialect's comment and block-end forms, its function
-    names in place of ``@functions`` (``Dialect.lexicon``), and the abbreviations of its
-    macro words (:func:`abbreviations`)."""
+    """The grammar of ``family`` for one dialect (:func:`family_text`), with each
+    ``%import NAME (@all)`` naming every rule and terminal that ``NAME.lark`` defines for
+    the same dialect (so a grammar extends the base one with ``%override``/``%extend``;
+    :func:`grammar_loader` gives lark that text)."""
+    text = family_text(family, comments, block_end, abbreviated, functions)
+
+    def every_name(m: re.Match[str]) -> str:
+        base = family_text(m.group(1), comments, block_end, abbreviated, functions)
+        names = list(dict.fromkeys(_DEFINED.findall(base) + _ALIAS.findall(base)))  # aliases are mangled too
+        return f"%import {m.group(1)} ({', '.join(names)})"
+
+    return _IMPORT_ALL.sub(every_name, text)
+
+
+def grammar_loader(comments: tuple[str, ...], block_end: str, abbreviated: tuple[tuple[str, str], ...] = (),
+                   functions: tuple[str, ...] = ()) -> Callable[[object, str], tuple[str, str]]:
+    """A lark import loader: ``%import fanuc`` reads ``cncc/grammar/fanuc.lark`` as :func:`family_text`
+    gives it for the dialect."""
+    def load(_base: object, grammar_path: str) -> tuple[str, str]:
+        family = grammar_path.removesuffix(".lark")
+        if not resources.files("cncc.grammar").joinpath(f"{family}.lark").is_file():
+            raise OSError(grammar_path)
+        return f"cncc/grammar/{grammar_path}", family_text(family, comments, block_end, abbreviated, functions)
+
+    return load
+
+
+def family_text(family: str, comments: tuple[str, ...], block_end: str,
+                abbreviated: tuple[tuple[str, str], ...] = (), functions: tuple[str, ...] = ()) -> str:
+    """The text of ``cncc/grammar/<family>.lark`` with the dialect's comment and block-end forms,
+    its function names in place of ``@functions`` (``Dialect.lexicon``), and the abbreviations of
+    its macro words (:func:`abbreviations`)."""
     text = resources.files("cncc.grammar").joinpath(f"{family}.lark").read_text(encoding="utf-8")
     names = sorted(functions, key=lambda f: (-len(f), f))
     text = text.replace("@functions", "|".join(names) if names else "(?!)")
@@ -253,6 +287,7 @@ def _lark(family: str, comments: tuple[str, ...], block_end: str,
     builder = _Builder({short: word for word, short in abbreviated})
     parser = Lark(
         grammar_text(family, comments, block_end, abbreviated, functions),
+        import_paths=[grammar_loader(comments, block_end, abbreviated, functions)],
         parser="lalr",
         lexer="contextual",
         transformer=builder,

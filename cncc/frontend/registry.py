@@ -22,6 +22,7 @@ from types import MappingProxyType
 from typing import TYPE_CHECKING
 
 from cncc.dialects import CodeDef
+from cncc.frontend import catalogue
 from cncc.ir import Vec6
 
 if TYPE_CHECKING:
@@ -97,19 +98,5 @@ class Layer:
 
 
 # Execution order of the ops within one block (lower runs first).
-ORDER: dict[str, int] = {
-    "feed_per_min": 10, "feed_per_rev": 10, "inverse_time": 10,
-    "dwell": 40,
-    "plane_xy": 50, "plane_zx": 50, "plane_yz": 50,
-    "inch": 55, "metric": 55,
-    "comp_off": 60, "comp_left": 60, "comp_right": 60,
-    "length_plus": 65, "length_minus": 65, "length_off": 65,
-    "work": 70,
-    "exact_stop_mode": 75, "curve_mode": 75, "tapping_mode": 75, "continuous_mode": 75, "exact_stop_once": 75,
-    "absolute": 80, "incremental": 80,
-    "return_initial": 85, "return_r": 85,
-    "css_on": 86, "css_off": 86,
-    "polar_on": 87, "polar_off": 87, "scale_on": 87, "scale_off": 87, "mirror_on": 87, "mirror_off": 87,
-    "rotate_on": 88, "rotate_off": 88,
-}
-DEFAULT_ORDER = 90  # non-modal and motion codes
+ORDER = catalogue.ORDER  # the op catalogue's (cncc/frontend/op_catalogue.toml)
+DEFAULT_ORDER = catalogue.DEFAULT_ORDER  # non-modal and motion codes

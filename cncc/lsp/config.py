@@ -12,7 +12,6 @@ file that claims the extension, and finally the driver's default.
 from __future__ import annotations
 
 import os
-import re
 import tomllib
 from dataclasses import dataclass, field, fields, replace
 from typing import Any
@@ -84,15 +83,10 @@ def _coerce(key: str, value: Any, current: Any) -> Any:
 
 # ---- dialects --------------------------------------------------------------------
 # Marks the command line's detection (cncc/frontend/detect.py) does not look for.
-_CONTENT_HINTS: tuple[tuple[str, re.Pattern[str]], ...] = (
-    ("szgh", re.compile(r"^\s*(?:N\d+\s*)?(?:WAT\b|FILEON|PP[A-Z]|M98\s*P[A-Za-z])", re.MULTILINE)),
-)
-
-
 def guess_dialect(path: str, text: str, configured: str | None) -> str:
     """The dialect of one document: a modeline, else the configured dialect, else the command
-    line's guess (``cncc.frontend.detect``: marks in the text, then well-known extensions),
-    else a few more content marks, else the only dialect file that claims the extension,
+    line's guess (``cncc.frontend.detect``: the dialect files' marks, then well-known
+    extensions), else the only dialect file that claims the extension,
     else the default."""
     from cncc.frontend.detect import guess_dialect as detect
 
@@ -106,9 +100,6 @@ def guess_dialect(path: str, text: str, configured: str | None) -> str:
     name, why = detect(path, sample)
     if name in known and not why.startswith("nothing"):
         return name
-    for name, pattern in _CONTENT_HINTS:
-        if name in known and pattern.search(sample):
-            return name
     ext = os.path.splitext(path)[1].lower()
     matches = [name for name in known if ext and ext in _extensions(name)]
     if len(matches) == 1:

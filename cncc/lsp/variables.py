@@ -134,10 +134,11 @@ class _KnownParameters(Parameters):
 
 
 class _Eval:
-    """``expr`` through the compiler's own evaluator for the dialect's macro flavour
-    (:mod:`cncc.frontend.macro.evaluate`, :mod:`cncc.frontend.linuxcnc.evaluate`), with
-    the variables assigned above; None when an operand is unknown or the compiler would
-    report an error (domain, division by zero ...)."""
+    """``expr`` through the compiler's own evaluator (:class:`cncc.frontend.evaluate.Evaluator`
+    with the flavour's tables, bound to a variable store by :mod:`cncc.frontend.macro.evaluate`
+    or :mod:`cncc.frontend.linuxcnc.evaluate` as in the compiler), with the variables assigned
+    above; None when an operand is unknown or the compiler would report an error (domain,
+    division by zero ...)."""
 
     def __init__(self, dialect: Dialect, values: dict[int, float]) -> None:
         self._linuxcnc = LinuxcncEvaluator(_KnownParameters(values)) if dialect.macro_flavour == "linuxcnc" else None

@@ -21,8 +21,9 @@ ARGS = (-2.5, -1.5, -1.2, -1.0, -0.5, 0.0, 0.3, 0.5, 1.0, 1.2, 1.5, 2.5, 30.0, 9
 FANUC = ("SIN", "COS", "TAN", "ASIN", "ACOS", "ATAN", "SQRT", "ABS", "ROUND", "FIX", "FUP", "LN", "EXP",
          "BIN", "BCD")
 LINUXCNC = ("SIN", "COS", "TAN", "ASIN", "ACOS", "ATAN", "SQRT", "ABS", "ROUND", "FIX", "FUP", "LN", "EXP")
-CASES = [("syntec", f, FANUC) for f in FANUC] + [("fanuc", f, FANUC) for f in ("ROUND", "FIX", "FUP", "ATAN")]
-CASES += [("szgh", f, FANUC) for f in FANUC] + [("linuxcnc", f, LINUXCNC) for f in LINUXCNC]
+CASES: list[tuple[str, str, tuple[str, ...]]] = [("syntec", f, FANUC) for f in FANUC]
+CASES += [("fanuc", f, FANUC) for f in ("ROUND", "FIX", "FUP", "ATAN")] + [("szgh", f, FANUC) for f in FANUC]
+CASES += [("linuxcnc", f, LINUXCNC) for f in LINUXCNC]
 
 
 def _texts(dialect: str, expr: str) -> tuple[str, str]:

@@ -3,25 +3,25 @@
 Numbered parameters read 0 until set; ``#1``-``#30`` are local to a subroutine call.
 Named parameters are local to the call unless the name starts with ``_``; reading
 one that was never set is an error (``E0352``), ``EXISTS[#<name>]`` tests for it.
-A few read-only ``#<_name>`` parameters report the interpreter's state.
+A few read-only ``#<_name>`` parameters report the interpreter's state.  The functions
+and operators are LinuxCNC's table (:data:`cncc.frontend.functions.LINUXCNC`), evaluated
+by :class:`cncc.frontend.evaluate.Evaluator`.
 """
 
 from __future__ import annotations
 
-import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
 from cncc import diagnostics as dg
-from cncc.frontend.syntax import BinOp, Call, Expr, Neg, Num, Var
+from cncc.frontend import evaluate
+from cncc.frontend.evaluate import ExprError
+from cncc.frontend.functions import LINUXCNC
+from cncc.frontend.syntax import Var
 
-_EPS = 0.0001  # LinuxCNC's TOLERANCE_EQUAL: EQ and NE compare reals within it
 
-
-class EvalError(Exception):
-    def __init__(self, code: str, message: str, start: int, end: int, detail: str = "") -> None:
-        super().__init__(message)
-        self.code, self.message, self.start, self.end, self.detail = code, message, start, end, detail
+class EvalError(ExprError):
+    """A LinuxCNC expression error (code, message, span, detail)."""
 
 
 @dataclass(slots=True)
@@ -60,53 +60,17 @@ class Parameters:
         (self.globals_named if name.startswith("_") else self.scopes[-1].named)[name] = value
 
 
-_FUNCS: dict[str, Callable[[float], float]] = {
-    "ABS": abs, "FIX": lambda x: float(math.floor(x)), "FUP": lambda x: float(math.ceil(x)),
-    "ROUND": lambda x: float(math.floor(x + 0.5)) if x >= 0 else -float(math.floor(-x + 0.5)),
-    "EXP": math.exp, "SIN": lambda x: math.sin(math.radians(x)), "COS": lambda x: math.cos(math.radians(x)),
-    "TAN": lambda x: math.tan(math.radians(x)),
-}
+class Evaluator(evaluate.Evaluator):
+    """:class:`cncc.frontend.evaluate.Evaluator` with LinuxCNC's tables over one parameter store."""
 
-
-def _power(a: float, b: float) -> float:
-    if a < 0 and b != int(b):
-        return math.nan
-    try:
-        return float(a ** b)
-    except (OverflowError, ZeroDivisionError):
-        return math.inf
-
-
-_BINARY: dict[str, Callable[[float, float], float]] = {
-    "+": lambda a, b: a + b, "-": lambda a, b: a - b, "*": lambda a, b: a * b, "/": lambda a, b: a / b,
-    "MOD": lambda a, b: math.fmod(a, b) + (abs(b) if math.fmod(a, b) < 0 else 0.0), "**": _power,  # [7 MOD -3] = 1
-    "EQ": lambda a, b: float(abs(a - b) < _EPS), "NE": lambda a, b: float(abs(a - b) >= _EPS),
-    "GT": lambda a, b: float(a > b), "GE": lambda a, b: float(a >= b),
-    "LT": lambda a, b: float(a < b), "LE": lambda a, b: float(a <= b),
-    "AND": lambda a, b: float(a != 0 and b != 0), "OR": lambda a, b: float(a != 0 or b != 0),
-    "XOR": lambda a, b: float((a != 0) != (b != 0)),
-}
-
-
-class Evaluator:
     def __init__(self, params: Parameters) -> None:
+        super().__init__(LINUXCNC, self._read, EvalError, self._exists)
         self.p = params
 
-    def number(self, e: Expr) -> float:
-        match e:
-            case Num():
-                return e.value
-            case Var():
-                return self.read(e)
-            case Neg():
-                return -self.number(e.operand)
-            case BinOp():
-                return self._binary(e)
-            case Call():
-                return self._call(e)
-        raise EvalError(dg.SYNTAX, "bad expression", 0, 0)  # pragma: no cover - closed union
+    def _exists(self, v: Var) -> bool:
+        return v.index is not None or self.p.lookup(v.name) is not None
 
-    def read(self, v: Var) -> float:
+    def _read(self, v: Var) -> float:
         if v.index is None:
             got = self.p.lookup(v.name)
             if got is None:
@@ -121,43 +85,3 @@ class Evaluator:
         if abs(n - k) > 1e-4 or k < 1 or k > 5601:
             raise EvalError(dg.MACRO_BAD_VARIABLE, f"parameter number #{n:g} out of range (1-5601)", v.start, v.end)
         return k
-
-    def _binary(self, e: BinOp) -> float:
-        a, b = self.number(e.left), self.number(e.right)
-        op = e.op
-        if op in ("/", "MOD") and b == 0:
-            raise EvalError(dg.MACRO_DIV_ZERO, "division by zero", e.start, e.end)
-        fn = _BINARY.get(op)
-        if fn is None:
-            raise EvalError(dg.SYNTAX, f"unknown operator {op}", e.start, e.end)  # pragma: no cover
-        return fn(a, b)
-
-    def _call(self, e: Call) -> float:
-        name = e.func
-        if name == "EXISTS":
-            arg = e.args[0]
-            if isinstance(arg, Var) and arg.index is None:
-                return float(self.p.lookup(arg.name) is not None)
-            return 1.0
-        if name == "ATAN" and len(e.args) == 2:
-            return math.degrees(math.atan2(self.number(e.args[0]), self.number(e.args[1])))
-        x = self.number(e.args[0])
-        if name == "SQRT":
-            if x < 0:
-                raise EvalError(dg.MACRO_DOMAIN, "square root of a negative number", e.start, e.end, "sqrt")
-            return math.sqrt(x)
-        if name in ("ASIN", "ACOS"):
-            if abs(x) > 1:
-                raise EvalError(dg.MACRO_DOMAIN, f"{name} of {x:g} (outside -1..1)", e.start, e.end)
-            return math.degrees(math.asin(x) if name == "ASIN" else math.acos(x))
-        if name == "LN":
-            if x <= 0:
-                raise EvalError(dg.MACRO_DOMAIN, f"LN of {x:g} (not positive)", e.start, e.end)
-            return math.log(x)
-        fn = _FUNCS.get(name)
-        if fn is None:
-            raise EvalError(dg.MACRO_NOT_SUPPORTED, f"{name} is not a LinuxCNC function", e.start, e.end)
-        return fn(x)
-
-    def condition(self, e: Expr) -> bool:
-        return self.number(e) != 0.0

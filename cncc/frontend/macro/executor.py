@@ -26,6 +26,7 @@ from dataclasses import dataclass, field
 from cncc import diagnostics as dg
 from cncc.diagnostics import DiagnosticSink, Related
 from cncc.dialects import CodeDef, Dialect
+from cncc.frontend import catalogue
 from cncc.frontend.interp import Interpreter
 from cncc.frontend.macro.evaluate import Evaluator
 from cncc.frontend.macro.frames import CallFrame, ModalCall
@@ -54,11 +55,7 @@ from cncc.frontend.syntax import (
 from cncc.ir import MOTION_TYPES, Command, Message, Stop, StopKind
 from cncc.source import NO_SPAN, SourceFile, Span
 
-EXEC_OPS = frozenset({
-    "subprogram_call", "subprogram_return", "macro_call", "modal_call", "modal_call_off", "block_loop",
-    "block_loop_end", "jump", "user_macro", "input_wait_on", "input_wait_off", "program_restart",
-    "local_call",
-})
+EXEC_OPS = catalogue.EXEC_OPS
 """Ops the executor handles itself instead of the interpreter."""
 
 NOT_ARGUMENTS = frozenset("GLNOP")

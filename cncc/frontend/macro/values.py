@@ -19,6 +19,8 @@ from collections.abc import Iterable
 from dataclasses import dataclass, field
 from typing import Protocol
 
+from cncc.frontend.evaluate import ExprError
+
 Value = float | None
 
 FANUC_ARGUMENTS_I: dict[str, int] = {
@@ -28,19 +30,12 @@ FANUC_ARGUMENTS_I: dict[str, int] = {
 """Fanuc argument specification I: address -> local variable."""
 
 
-class MacroError(Exception):
+class MacroError(ExprError):
     """A run-time error of a macro program (diagnostic code and message).
 
     Raised inside the evaluator and caught by the executor at the statement that
     caused it; never leaves the front end.
     """
-
-    def __init__(self, code: str, message: str, start: int = -1, end: int = -1) -> None:
-        super().__init__(message)
-        self.code = code
-        self.message = message
-        self.start = start
-        self.end = end
 
 
 class SystemVariables(Protocol):
