@@ -501,24 +501,10 @@ def compile_files(opts: Options, stdin: TextIO | None = None) -> Result:
         src = read_input(path, sources, sink, stdin)
         if src is None:
             continue
-        opts, dialect, machine = file_options(base_opts, path, src, sink), base_dialect, base_machine
-        if opts.machine != base_opts.machine or opts.dialect_options != base_opts.dialect_options:
-            model = resolve_machine(opts.machine, sink)
-            if model is None:
-                continue
-            machine = apply_dialect_to_machine(model, opts, sink)
-        if not src.text.strip():
-            sink.emit(dg.EMPTY_PROGRAM, Span(src.source_id, 0, 0), "the program contains no blocks")
-        if opts.dialect is None:  # no -x: guess from the name and contents (reported with -v)
-            guessed = guessed_dialect(src, opts, sink)
-            if guessed is None:  # the -f options do not fit the guessed dialect (reported)
-                continue
-            dialect = guessed
-        elif opts.dialect != base_opts.dialect or opts.dialect_options != base_opts.dialect_options:
-            chosen = resolve_dialect(opts, sink)
-            if chosen is None:
-                continue
-            dialect = chosen
+        setup = _file_setup(base_opts, base_dialect, base_machine, path, src, sink)
+        if setup is None:
+            continue
+        opts, dialect, machine = setup
         result.dialects[src.name] = dialect.name
         ins.unit = src.name
         deps = result.deps.setdefault(src.name, [])
@@ -541,6 +527,31 @@ def compile_files(opts: Options, stdin: TextIO | None = None) -> Result:
     result.output = "".join(chunks)
     result.pass_report = pass_report(ins, opts, sink)
     return result
+
+
+def _file_setup(base_opts: Options, base_dialect: Dialect, base_machine: MachineModel, path: str,
+                src: SourceFile, sink: DiagnosticSink) -> tuple[Options, Dialect, MachineModel] | None:
+    """The options, dialect and machine of one input file (its own ``cncc:`` options, a guessed
+    dialect); None when they cannot be resolved (reported)."""
+    opts, dialect, machine = file_options(base_opts, path, src, sink), base_dialect, base_machine
+    if opts.machine != base_opts.machine or opts.dialect_options != base_opts.dialect_options:
+        model = resolve_machine(opts.machine, sink)
+        if model is None:
+            return None
+        machine = apply_dialect_to_machine(model, opts, sink)
+    if not src.text.strip():
+        sink.emit(dg.EMPTY_PROGRAM, Span(src.source_id, 0, 0), "the program contains no blocks")
+    if opts.dialect is None:  # no -x: guess from the name and contents (reported with -v)
+        guessed = guessed_dialect(src, opts, sink)
+        if guessed is None:  # the -f options do not fit the guessed dialect (reported)
+            return None
+        dialect = guessed
+    elif opts.dialect != base_opts.dialect or opts.dialect_options != base_opts.dialect_options:
+        chosen = resolve_dialect(opts, sink)
+        if chosen is None:
+            return None
+        dialect = chosen
+    return opts, dialect, machine
 
 
 def run_backend(cmds: Iterator[Command], src: SourceFile, sources: SourceMap, dialect: Dialect,
