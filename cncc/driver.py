@@ -630,7 +630,7 @@ def plan_trajectory(cmds: list[Command], machine: MachineModel, level: int, sink
     passes = plan_passes(PipelineConfig(machine_coords=True, spec=spec), level, verify=verify,
                          soft_limits=soft_limits, quiet=quiet)
     ctx = PassContext(sink=sink, machine=machine)
-    for _ in pm.run(passes, cmds, ctx, stage="plan"):
+    for _ in pm.run(passes, cmds, ctx, stage="plan", label=f"-O{level} on {machine.name}"):
         pass
     if ctx.trajectory is None:  # a -p plan stage without plan: the nominal estimate, for the report
         from cncc.backends.nominal import nominal_trajectory

@@ -163,8 +163,9 @@ class Instrumentation:
         body = self.printer(items) if self.printer is not None else "".join(f"{c!r}\n" for c in items)
         return f"; *** IR Dump After {header} ***\n{body}"
 
-    def printed(self, items: Iterable[Command], name: str) -> Iterator[Command]:
-        header = f"{name} ({self.unit})" if self.unit else name
+    def printed(self, items: Iterable[Command], name: str, label: str = "") -> Iterator[Command]:
+        where = ", ".join(x for x in (self.unit, label) if x)
+        header = f"{name} ({where})" if where else name
         kept: list[Command] = []
         done = [False]
         self._pending.append((header, kept, done))
@@ -197,9 +198,10 @@ class PassManager:
         return ins.clock.call(row, fn) if ins is not None and ins.time_passes else fn()
 
     def run(self, passes: Iterable[Pass], cmds: Iterable[Command], ctx: PassContext, *,
-            stage: str = "path") -> Iterator[Command]:
+            stage: str = "path", label: str = "") -> Iterator[Command]:
         """The commands through ``passes`` in order (lazily).  ``stage="plan"`` continues the
-        invariants of the last path stage (``to-machine`` has run)."""
+        invariants of the last path stage (``to-machine`` has run); ``label`` names the run in
+        the --print-after headers (a planned column: "-O1 on generic-mill")."""
         stream: Iterable[Command] = cmds
         ins = self.instrument
         if ins is None:
@@ -209,14 +211,14 @@ class PassManager:
         ran = set(ins.path_ran) if stage == "plan" else set()
         for p in passes:
             ran.add(p.name)
-            stream = self._one(p, stream, ctx, ins, frozenset(ran))
+            stream = self._one(p, stream, ctx, ins, frozenset(ran), label)
         if stage == "path":
             ins.path_ran = frozenset(ran)
         return iter(stream)
 
     @staticmethod
     def _one(p: Pass, stream: Iterable[Command], ctx: PassContext, ins: Instrumentation,
-             ran: frozenset[str]) -> Iterable[Command]:
+             ran: frozenset[str], label: str) -> Iterable[Command]:
         timing = ins.time_passes
         prev = stream
         out = ins.clock.timed(_deferred(p, prev, ctx), p.name) if timing else p.run(prev, ctx)
@@ -224,7 +226,7 @@ class PassManager:
             checked = Checker(p.name, ctx.sink, ins.sources, ran).check(out)
             out = ins.clock.timed(checked, VERIFY_ROW) if timing else checked
         if p.name in ins.print_after:
-            printed = ins.printed(out, p.name)
+            printed = ins.printed(out, p.name, label)
             out = ins.clock.timed(printed, PRINT_ROW) if timing else printed
         return out
 

@@ -35,10 +35,10 @@ def recorded(monkeypatch: pytest.MonkeyPatch) -> list[tuple[str, list[Pass]]]:
     seen: list[tuple[str, list[Pass]]] = []
     real = PassManager.run
 
-    def spy(self: PassManager, passes: Any, cmds: Any, ctx: Any, *, stage: str = "path") -> Any:
+    def spy(self: PassManager, passes: Any, cmds: Any, ctx: Any, *, stage: str = "path", label: str = "") -> Any:
         passes = list(passes)
         seen.append((stage, passes))
-        return real(self, passes, cmds, ctx, stage=stage)
+        return real(self, passes, cmds, ctx, stage=stage, label=label)
 
     monkeypatch.setattr(PassManager, "run", spy)
     return seen

@@ -235,3 +235,10 @@ def test_the_print_file_is_kept_when_a_pass_broke_the_ir(monkeypatch: pytest.Mon
     assert dump.startswith("; *** IR Dump After polar")
     assert "<stdin>:2:1: Linear(" not in dump  # the dropped motion (the second: after the G00)
     assert "<stdin>:3:1: Linear(" in dump
+
+
+def test_print_after_a_planning_pass_names_each_column() -> None:
+    r = compile_text(PROGRAM, emit="timing", compare="O0,O1", print_after=("blend",), quiet=True)
+    headers = [ln for ln in r.pass_report.splitlines() if ln.startswith("; *** IR Dump After")]
+    assert headers == ["; *** IR Dump After blend (<stdin>, -O0 on generic-mill) ***",
+                       "; *** IR Dump After blend (<stdin>, -O1 on generic-mill) ***"]
