@@ -245,6 +245,8 @@ XL_INCREMENT_UNKNOWN_START = _define("E0860", E, "a G91 move of an axis whose po
                                      "from an assumed position")
 XL_RETURN_START = _define("E0861", E, "a return to the program's start point (SZGH G26) that the target cannot write: "
                           "the start is wherever the machine was")
+XL_NO_PROBE = _define("E0883", E, "a G38.x probe move the target dialect cannot write (it has no probing): the move "
+                      "is not translated")
 TARGET_UNSUPPORTED = _define("W0890", W, "a code the target dialect has no counterpart for")
 ANALYSIS_STOPPED = _define("N0990", N, "the editor stopped analysing a document at its time budget")
 

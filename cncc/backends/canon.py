@@ -118,7 +118,7 @@ def canon_lines(cmds: Iterable[Command], *, initial_frame: Frame | None = None,
             case FeedRate():
                 feed = c.feed / frame.units.mm_per_unit if fmt.feed_in_program_units else c.feed
                 yield PREFIX + f"SET_FEED_RATE({_f(feed)})"
-            case SetMode(name="rigid_tap" | "nurbs_feed") if fmt.has(c.name):
+            case SetMode(name="rigid_tap" | "nurbs_feed" | "probe") if fmt.has(c.name):
                 skip = int(c.value[-1])
                 yield from _lines(fmt, c.name, **_folded_fields(c))
             case SetMode():
@@ -164,9 +164,9 @@ def _other(c: Command) -> tuple[str, dict[str, Any]]:
 
 def _folded_fields(c: SetMode) -> dict[str, Any]:
     k = c.frame.units.mm_per_unit
-    if c.name == "rigid_tap":  # value: (end Vec6, commands folded)
+    if c.name in ("rigid_tap", "probe"):  # value: (end Vec6, [code,] commands folded)
         end = c.value[0]
-        return {"x": end[0] / k, "y": end[1] / k, "z": end[2] / k}
+        return {"x": end[0] / k, "y": end[1] / k, "z": end[2] / k, "a": end[3], "b": end[4], "c": end[5]}
     points, order, _ = c.value  # nurbs_feed: (control points, order, commands folded)
     return {"points": points, "order": order}
 

@@ -12,7 +12,7 @@ pytestmark = pytest.mark.skipif(rs274_path() is None, reason="LinuxCNC's rs274 i
 
 # Classes of issue 24 not fixed yet: cncc disagrees with rs274 on these (docs/dialects-notes.md).
 OPEN_CASES = frozenset({"dollar_spindle", "m70_m72", "g7_diameter",
-                        "probe_g38_2", "polar_words", "tool_not_in_table"})
+                        "polar_words", "tool_not_in_table"})
 
 
 @pytest.mark.parametrize("name", sorted(CASES))

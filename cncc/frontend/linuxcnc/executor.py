@@ -199,7 +199,17 @@ class LinuxcncExecutor:
         if not self.reporter.allowed(Span(self.it.source_id, block.start, block.end), words):
             return
         self.out.extend(self.it.execute(nc))
+        self._probe_result()
         self.reporter.after_block(Span(self.it.source_id, block.start, block.end), words, self.out, at, before)
+
+    def _probe_result(self) -> None:
+        """A G38.x probe sets #5061-#5070 (cncc/frontend/rs274_probe.py)."""
+        from cncc.frontend.rs274_probe import take_result
+
+        got = take_result(self.it)
+        if got is not None:
+            for k, v in enumerate(got):
+                self.params.globals_numbered[5061 + k] = v
 
     def _drop_g80(self, words: tuple[Word, ...]) -> tuple[Word, ...]:
         """G80 beside another motion code (``G0 G80 X5``): LinuxCNC ignores the G80."""
