@@ -210,6 +210,8 @@ def _set_mode(c: SetMode, last_g5x: str, last_g92: str, fmt: CanonFormat) -> Ite
                           front=float(front), back=float(back), orientation=orient)
     elif c.name == "overrides":  # value: True (on) / False (off)
         yield from _lines(fmt, "overrides_on" if c.value else "overrides_off")
+    elif c.name == "tool_number":
+        yield from _lines(fmt, "tool_number", tool=int(c.value))
     elif c.name == "spindle_mode":
         yield from _lines(fmt, "spindle_mode", css_max=float(c.value or 0.0))
 

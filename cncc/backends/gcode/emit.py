@@ -323,6 +323,8 @@ class GcodeEmitter:
     def _set_mode(self, cmd: SetMode) -> Iterator[str]:
         if cmd.name == "probe":
             self.probe = (self.t.code(cmd.value[1]), int(cmd.value[-1]))
+        elif cmd.name == "tool_number":  # M61 Q
+            yield self.op_block("set_tool_number", "setting the tool number without a change", [f"Q{cmd.value}"])
         elif cmd.name in ("call_begin", "call_end") and self.opt.keep_subprograms:
             from cncc.backends.gcode.subprograms import call_marker
 
