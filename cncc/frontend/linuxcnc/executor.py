@@ -25,6 +25,7 @@ from cncc.frontend.interp import Interpreter
 from cncc.frontend.linuxcnc.builder import oword_of
 from cncc.frontend.linuxcnc.evaluate import EvalError, Evaluator, Parameters, Scope
 from cncc.frontend.linuxcnc.flow import FlowIndex
+from cncc.frontend.linuxcnc.modal_save import Saved
 from cncc.frontend.linuxcnc.report import Before, Reporter
 from cncc.frontend.parser import Parser
 from cncc.frontend.syntax import Assign, Block, CommentItem, Word
@@ -48,6 +49,8 @@ class Frame:
     repeats: dict[int, int] = field(default_factory=dict)
     m98_count: int = 0
     m98_start: int = 0
+    modal_saved: Saved | None = None  # M70 / M73 (cncc/frontend/linuxcnc/modal_save.py)
+    auto_restore: bool = False  # M73: restore modal_saved when this call returns
 
 
 class LinuxcncExecutor:
@@ -110,6 +113,7 @@ class LinuxcncExecutor:
         steps = 0
         while self.stack and not self.stopped and not self.it.ended:
             fr = self.stack[-1]
+            depth = len(self.stack)
             if fr.pc >= len(fr.index.blocks):
                 self._fell_off(fr)
             else:
@@ -120,6 +124,8 @@ class LinuxcncExecutor:
                               "(an endless loop?)")
                     break
                 self._step(fr)
+            if fr.auto_restore and len(self.stack) < depth and self.stack and not self.stopped and not self.it.ended:
+                self._restore_modal(fr, self.stack[-1].call_span or fr.call_span)
             if self.out:
                 yield from self.out
                 self.out = []
@@ -180,6 +186,11 @@ class LinuxcncExecutor:
             else:
                 self.params.write_number(self.ev.var_number(target), value)
         comments = self._messages(fr, block)
+        m7x = [w for w in words if w.letter == "M" and round(w.value) in (70, 71, 72, 73)]
+        if m7x:
+            self._run_words(block, tuple(w for w in words if w not in m7x), comments)
+            self._modal_save(fr, block, round(m7x[0].value))
+            return
         m98 = [w for w in words if w.letter == "M" and round(w.value) in (98, 99)]
         if m98:
             from cncc.frontend.linuxcnc.control import run_m98
@@ -201,6 +212,32 @@ class LinuxcncExecutor:
         self.out.extend(self.it.execute(nc))
         self._probe_result()
         self.reporter.after_block(Span(self.it.source_id, block.start, block.end), words, self.out, at, before)
+
+    def _modal_save(self, fr: Frame, block: Block, m: int) -> None:
+        """M70 save, M71 forget, M72 restore, M73 save and restore at the return of this call."""
+        from cncc.frontend.linuxcnc.modal_save import save
+
+        if self.stopped:
+            return
+        if m in (70, 73):
+            fr.modal_saved, fr.auto_restore = save(self.it), m == 73 and fr.caller is not None
+        elif m == 71:
+            fr.modal_saved, fr.auto_restore = None, False
+        elif fr.modal_saved is None:
+            self.fail(dg.CONTROLLER_REJECTS, fr.index.span(block),
+                      "Cannot restore context from invalid stack frame - missing M70/M73?")
+        else:
+            self._restore_modal(fr, fr.index.span(block))
+
+    def _restore_modal(self, fr: Frame, span: Span | None) -> None:
+        from cncc.frontend.linuxcnc.modal_save import restore_blocks
+
+        assert fr.modal_saved is not None
+        start, end = (span.start, span.end) if span is not None else (0, 0)
+        for words in restore_blocks(self.it, fr.modal_saved):
+            if words:
+                ws = tuple(Word(letter, value, True, start, end) for letter, value in words)
+                self._run_words(Block(self.line, start, end, ws), ws, ())
 
     def _probe_result(self) -> None:
         """A G38.x probe sets #5061-#5070 (cncc/frontend/rs274_probe.py)."""
