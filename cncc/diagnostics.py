@@ -260,6 +260,8 @@ OUTPUT_IS_INPUT = _define("E0906", E, "the output file would overwrite an input 
 SETTING_ORIGIN = _define("N0907", N, "-v: where a setting came from (command line, modeline, cncc.toml, default)")
 BAD_PROJECT_CONFIG = _define("E0908", E, "a cncc.toml project file is malformed")
 NUMPY_WARNING = _define("W0909", W, "a numerical warning (overflow, invalid value) raised while computing")
+INI_UNREADABLE = _define("E0983", E, "the --ini file cannot be read")
+INI_BAD_LINE = _define("E0984", E, "a line of the --ini file is not a section, a NAME = VALUE line or a comment")
 
 # --- E0995-E0999: program libraries (cncc batch) ---------------------------------
 BATCH_NO_PROGRAMS = _define("E0995", E, "batch: no program file matches the given folders and patterns")

@@ -41,6 +41,7 @@ class Options:
     opt_level: int = 2
     offsets_file: str | None = None
     tools_file: str | None = None
+    ini_file: str | None = None  # --ini: a LinuxCNC INI file (cncc/inifile.py)
     dialect_options: dict[str, Any] = field(default_factory=dict)
     block_delete: bool = True
     repair_arcs: bool = False
@@ -220,11 +221,25 @@ def front_end(src: SourceFile, dialect: Dialect, machine: MachineModel, opts: Op
     if opts.start_machine_mm is not None:  # the program position of that point in G54
         m, g54 = tuple(opts.start_machine_mm) + (0.0,) * 6, work.get(1, (0.0,) * 6)
         iopts.start_mm = (m[0] - g54[0], m[1] - g54[1], m[2] - g54[2], m[3] - g54[3], m[4] - g54[4], m[5] - g54[5])
-    return lower(src, dialect, sink, iopts, macro_options(opts, sink, sources, deps))
+    ini = load_ini(opts, sink, sources)
+    tol = ini.number("RS274NGC", "CENTER_ARC_RADIUS_TOLERANCE_MM") if ini is not None else None
+    if tol is not None and "arc_radius_tolerance_mm" in dialect.options \
+            and "arc_radius_tolerance_mm" not in opts.dialect_options:
+        dialect = dialect.with_options({"arc_radius_tolerance_mm": tol})
+    return lower(src, dialect, sink, iopts, macro_options(opts, sink, sources, deps, ini))
+
+
+def load_ini(opts: Options, sink: DiagnosticSink, sources: SourceMap | None) -> Any:
+    """The --ini file's settings (cncc/inifile.py), or None."""
+    if not opts.ini_file:
+        return None
+    from cncc.inifile import read_ini
+
+    return read_ini(opts.ini_file, sources if sources is not None else SourceMap(), sink)
 
 
 def macro_options(opts: Options, sink: DiagnosticSink, sources: SourceMap | None,
-                  deps: list[str] | None = None) -> Any:
+                  deps: list[str] | None = None, ini: Any = None) -> Any:
     """The macro executor's options: -D presets, -I folders, --max-steps, --io, --write-dir."""
     from cncc.frontend.macro import MacroOptions
     from cncc.frontend.macro.iofile import IoFileError, read_io
@@ -244,8 +259,10 @@ def macro_options(opts: Options, sink: DiagnosticSink, sources: SourceMap | None
         return None if src is None else SourceFile(1_000_000 + src.source_id, src.name, src.text)
 
     protected = tuple(os.path.realpath(p) for p in opts.inputs if p != "-")
-    include = tuple(opts.include_dirs) + dialect_library(opts)
+    include = tuple(opts.include_dirs) + (ini.subroutine_dirs() if ini is not None else ()) + dialect_library(opts)
     return MacroOptions(presets=dict(opts.defines), include_dirs=include, max_steps=opts.max_steps,
+                        ini_parameters=ini.parameters() if ini is not None else {},
+                        ini_no_fanuc_subs=ini is not None and ini.flag("RS274NGC", "DISABLE_FANUC_STYLE_SUB"),
                         io_inputs=io, write_dir=opts.write_dir, load_source=load, protected_paths=protected,
                         files_used=deps if deps is not None else [],
                         call_markers=opts.keep_subprograms and opts.emit == "gcode" and not opts.expand,
@@ -381,7 +398,7 @@ def guessed_dialect(src: SourceFile, opts: Options, sink: DiagnosticSink) -> Dia
 
 # options -> cncc.toml keys (cncc/config.py)
 CONFIG_FIELDS = {"dialect": "dialect", "target": "target", "machine": "machine", "offsets": "offsets_file",
-                 "tools": "tools_file", "opt_level": "opt_level", "options": "dialect_options"}
+                 "tools": "tools_file", "ini": "ini_file", "opt_level": "opt_level", "options": "dialect_options"}
 
 
 def file_options(opts: Options, path: str, src: SourceFile, sink: DiagnosticSink) -> Options:

@@ -331,7 +331,7 @@ ops.BLOCK_HOOKS.append(_inverse_time_feed)
 
 
 from cncc.frontend import rs274_curves as _curves  # noqa: E402,F401  (G5, G5.1, G5.2/G5.3)
-from cncc.frontend import rs274_sync as _sync  # noqa: E402,F401  (G33, G33.1)
 from cncc.frontend import rs274_probe as _probe  # noqa: E402,F401  (G38.2 - G38.5)
+from cncc.frontend import rs274_sync as _sync  # noqa: E402,F401  (G33, G33.1)
 from cncc.frontend import rs274_tools as _tools  # noqa: E402,F401  (M61)
 from cncc.frontend import rs274_words as _words  # noqa: E402,F401  (@ ^ polar words, $ spindle number)

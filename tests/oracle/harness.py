@@ -69,7 +69,21 @@ class Run:
     codes: tuple[str, ...] = ()
 
 
-def run_rs274(text: str, tool_table: str = "", *, exe: Path | None = None) -> Run:
+Files = tuple[tuple[str, str], ...]  # (name, text): subroutine files in the folder "subs" beside the INI
+
+
+def _write_ini(tmp: str, ini: str, files: Files) -> list[str]:
+    """The INI file and its subroutine files in ``tmp``; the ``-i`` arguments (none without an INI)."""
+    for name, body in files:
+        (Path(tmp) / "subs").mkdir(exist_ok=True)
+        (Path(tmp) / "subs" / name).write_text(body)
+    if not ini:
+        return []
+    (Path(tmp) / "prog.ini").write_text(ini)
+    return ["-i", str(Path(tmp) / "prog.ini")]
+
+
+def run_rs274(text: str, tool_table: str = "", *, exe: Path | None = None, ini: str = "", files: Files = ()) -> Run:
     exe = exe or rs274_path()
     assert exe is not None, "rs274 is not installed (scripts/ensure-rs274.sh)"
     with tempfile.TemporaryDirectory(prefix="cncc-oracle-") as tmp:
@@ -77,9 +91,10 @@ def run_rs274(text: str, tool_table: str = "", *, exe: Path | None = None) -> Ru
         prog.write_text(text)
         tbl = Path(tmp) / "tool.tbl"
         tbl.write_text(tool_table)
+        ini_args = _write_ini(tmp, ini, files)
         for _ in range(3):  # rs274 now and then exits non-zero without a message: run it again
-            p = subprocess.run([str(exe), "-t", str(tbl), "-g", str(prog)], capture_output=True, text=True,
-                               timeout=30, cwd=tmp)
+            p = subprocess.run([str(exe), *ini_args, "-t", str(tbl), "-g", str(prog)], capture_output=True,
+                               text=True, timeout=30, cwd=tmp)
             err_lines = [ln for ln in p.stderr.splitlines() if ln.strip() and ln.strip() != "executing"]
             if p.returncode == 0 or err_lines:
                 break
@@ -96,7 +111,7 @@ def tool_table_mm(table: str) -> str:
     return "\n".join(rows) + "\n"
 
 
-def run_cncc(text: str, tool_table: str = "") -> Run:
+def run_cncc(text: str, tool_table: str = "", *, ini: str = "", files: Files = ()) -> Run:
     from cncc.api import compile_text
     from cncc.diagnostics import Severity
 
@@ -106,6 +121,8 @@ def run_cncc(text: str, tool_table: str = "") -> Run:
             tbl = Path(tmp) / "tool.tbl"
             tbl.write_text(tool_table_mm(tool_table))
             opts["tools_file"] = str(tbl)
+        if _write_ini(tmp, ini, files):  # SUBROUTINE_PATH is relative to the INI's folder for cncc, cwd for rs274
+            opts["ini_file"] = str(Path(tmp) / "prog.ini")
         r = compile_text(text, dialect="linuxcnc", emit="canon", **opts)
     errors = [d for d in r.sink if d.severity is Severity.ERROR]
     first = f"{errors[0].code}: {errors[0].message}" if errors else ""
@@ -150,9 +167,9 @@ def diff_calls(want: list[Call], got: list[Call], *, prefix: bool = False) -> st
     return ""
 
 
-def compare(text: str, tool_table: str = "") -> Verdict:
-    want = run_rs274(text, tool_table)
-    got = run_cncc(text, tool_table)
+def compare(text: str, tool_table: str = "", *, ini: str = "", files: Files = ()) -> Verdict:
+    want = run_rs274(text, tool_table, ini=ini, files=files)
+    got = run_cncc(text, tool_table, ini=ini, files=files)
     if want.ok != got.ok:
         why = f"rs274 error {want.error!r}" if not want.ok else f"cncc error {got.error!r}"
         return Verdict(False, f"only one fails: {why}", want, got)

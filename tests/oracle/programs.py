@@ -18,6 +18,8 @@ from dataclasses import dataclass
 class Program:
     text: str
     tool_table: str = ""
+    ini: str = ""  # a LinuxCNC INI file both interpreters read (rs274 -i, cncc --ini)
+    files: tuple[tuple[str, str], ...] = ()  # subroutine files in the folder "subs" beside the INI
 
 
 # In machine units, which are inches for the stand-alone rs274 (the harness scales them for cncc).

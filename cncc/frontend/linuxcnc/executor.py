@@ -78,6 +78,8 @@ class LinuxcncExecutor:
         self.line = 0  # the line of the block running (#<_line>)
         self.out: list[Command] = []
         self.stopped = False
+        self.ini_parameters: dict[str, float] = {}  # --ini: #<_ini[section]name> (read-only)
+        self.no_fanuc_subs = False  # --ini: [RS274NGC] DISABLE_FANUC_STYLE_SUB
 
     # ---- diagnostics
     def fail(self, code: str, span: Span, message: str, detail: str = "") -> None:
@@ -87,6 +89,8 @@ class LinuxcncExecutor:
         self.stopped = True
 
     def _system(self, name: str) -> float | None:
+        if name.startswith("_ini["):
+            return self.ini_parameters.get(name)
         it = self.it
         k = it.frame.units.mm_per_unit
         axes = {"_x": 0, "_y": 1, "_z": 2, "_a": 3, "_b": 4, "_c": 5}
@@ -181,6 +185,10 @@ class LinuxcncExecutor:
         words = self._drop_g80(tuple(self._value_word(w) for w in block.words))
         sets = [(s.target, self.ev.number(s.expr)) for s in block.statements if isinstance(s, Assign)]
         for target, value in sets:
+            if target.index is None and target.name.startswith("_ini["):
+                self.fail(dg.CONTROLLER_REJECTS, fr.index.span(block), f"Cannot assign to read-only parameter "
+                          f"#<{target.name}>")
+                return
             if target.index is None:
                 self.params.write_name(target.name, value)
             else:
@@ -192,6 +200,10 @@ class LinuxcncExecutor:
             self._modal_save(fr, block, round(m7x[0].value))
             return
         m98 = [w for w in words if w.letter == "M" and round(w.value) in (98, 99)]
+        if m98 and self.no_fanuc_subs:
+            self.fail(dg.CONTROLLER_REJECTS, fr.index.span(block), "DISABLE_FANUC_STYLE_SUB set in INI file, but "
+                      f"found m{round(m98[0].value)}")
+            return
         if m98:
             from cncc.frontend.linuxcnc.control import run_m98
 
@@ -332,4 +344,6 @@ def run_linuxcnc(src: SourceFile, dialect: Dialect, sink: DiagnosticSink, interp
     dirs = tuple(getattr(macro, "include_dirs", ()) or ())
     steps = int(getattr(macro, "max_steps", 5_000_000) or 5_000_000)
     ex = LinuxcncExecutor(dialect, sink, interp, parser, dirs, steps)
+    ex.ini_parameters = dict(getattr(macro, "ini_parameters", {}) or {})
+    ex.no_fanuc_subs = bool(getattr(macro, "ini_no_fanuc_subs", False))
     return ex.run(src)
