@@ -206,8 +206,8 @@ def load_tables(opts: Options, sink: DiagnosticSink) -> tuple[dict[int, Vec6], d
 
 # ---- pipeline ---------------------------------------------------------------------------
 def front_end(src: SourceFile, dialect: Dialect, machine: MachineModel, opts: Options,
-              sink: DiagnosticSink, sources: SourceMap | None = None, deps: list[str] | None = None
-              ) -> Iterator[Command]:
+              sink: DiagnosticSink, sources: SourceMap | None = None, deps: list[str] | None = None,
+              ini: Any = None) -> Iterator[Command]:
     from cncc.frontend import InterpOptions, lower
 
     work, lengths, radii = load_tables(opts, sink)
@@ -221,11 +221,8 @@ def front_end(src: SourceFile, dialect: Dialect, machine: MachineModel, opts: Op
     if opts.start_machine_mm is not None:  # the program position of that point in G54
         m, g54 = tuple(opts.start_machine_mm) + (0.0,) * 6, work.get(1, (0.0,) * 6)
         iopts.start_mm = (m[0] - g54[0], m[1] - g54[1], m[2] - g54[2], m[3] - g54[3], m[4] - g54[4], m[5] - g54[5])
-    ini = load_ini(opts, sink, sources)
-    tol = ini.number("RS274NGC", "CENTER_ARC_RADIUS_TOLERANCE_MM") if ini is not None else None
-    if tol is not None and "arc_radius_tolerance_mm" in dialect.options \
-            and "arc_radius_tolerance_mm" not in opts.dialect_options:
-        dialect = dialect.with_options({"arc_radius_tolerance_mm": tol})
+    if ini is None and opts.ini_file:
+        ini = load_ini(opts, sink, sources)
     return lower(src, dialect, sink, iopts, macro_options(opts, sink, sources, deps, ini))
 
 
@@ -236,6 +233,7 @@ def load_ini(opts: Options, sink: DiagnosticSink, sources: SourceMap | None) -> 
     from cncc.inifile import read_ini
 
     return read_ini(opts.ini_file, sources if sources is not None else SourceMap(), sink)
+
 
 
 def macro_options(opts: Options, sink: DiagnosticSink, sources: SourceMap | None,
@@ -456,6 +454,7 @@ def compile_files(opts: Options, stdin: TextIO | None = None) -> Result:
         return result
     machine = apply_dialect_to_machine(machine, opts, sink)
     chunks: list[str] = []
+    inis: dict[str, Any] = {}
     base_dialect, base_machine, base_opts = dialect, machine, opts
     for path in base_opts.inputs or ["-"]:
         if sink.limit_reached:
@@ -481,13 +480,17 @@ def compile_files(opts: Options, stdin: TextIO | None = None) -> Result:
             if chosen is None:
                 continue
             dialect = chosen
+        ini = None
+        if opts.ini_file:  # read once per run (its problems reported once)
+            ini = inis[opts.ini_file] if opts.ini_file in inis else inis.setdefault(
+                opts.ini_file, load_ini(opts, sink, sources))
         result.dialects[src.name] = dialect.name
         deps = result.deps.setdefault(src.name, [])
         if opts.list_deps:  # -M: run the front end, list the subprogram files it loaded
-            for _ in until_limit(front_end(src, dialect, machine, opts, sink, sources, deps), sink):
+            for _ in until_limit(front_end(src, dialect, machine, opts, sink, sources, deps, ini), sink):
                 pass
             continue
-        cmds = path_passes(until_limit(front_end(src, dialect, machine, opts, sink, sources, deps), sink),
+        cmds = path_passes(until_limit(front_end(src, dialect, machine, opts, sink, sources, deps, ini), sink),
                            dialect, machine, opts, sink)
         if opts.expand:
             cmds = with_line_map(cmds, sources)

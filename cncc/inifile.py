@@ -13,9 +13,12 @@ file is E0983.
   from its working folder);
 - every numeric value as the read-only parameter ``#<_ini[section]name>`` (names are
   case-insensitive; a value that is not a number is not a parameter);
-- ``[RS274NGC] DISABLE_FANUC_STYLE_SUB``: M98/M99 subprograms are errors;
-- ``[RS274NGC] CENTER_ARC_RADIUS_TOLERANCE_MM``: the absolute arc radius tolerance
-  (dialect option ``arc_radius_tolerance_mm``, unless ``-f`` sets it).
+- ``[RS274NGC] DISABLE_FANUC_STYLE_SUB``: M98/M99 subprograms are errors.
+
+Not read yet: ``CENTER_ARC_RADIUS_TOLERANCE_MM``/``_INCH`` (rs274 2.9 accepts 0.001 to its
+default 0.0283 mm, i.e. only a stricter check, which cncc's arc check does not take below
+its default), ``[TRAJ] SPINDLES`` (more than one spindle for ``$``), ``RETAIN_G43``,
+``OWORD_NARGS``, ``NO_DOWNCASE_OWORD``, ``FEATURES``, ``PARAMETER_FILE``, remaps.
 """
 
 from __future__ import annotations
