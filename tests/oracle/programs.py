@@ -364,3 +364,12 @@ def generate(feature: str, count: int, seed: int = 0) -> list[Program]:
     """``count`` programs of ``feature``, the same ones for the same seed."""
     gen = FEATURES[feature]
     return [gen(random.Random(f"{feature}:{seed}:{i}")) for i in range(count)]
+
+
+def _register_codes() -> None:
+    from tests.oracle.programs_codes import FEATURES as CODES  # issue 24's missing codes
+
+    FEATURES.update(CODES)
+
+
+_register_codes()

@@ -4,7 +4,8 @@
 restores it, ``M73`` saves it and restores it when the subroutine returns.  A restore
 runs the codes of the saved state that differ from the current one, as rs274 2.9 does
 (``gen_restore_cmd``), so the trace shows the calls those codes make: first the units
-(G20/G21), then in one block the feed mode, F (not in G93), S, M3/M4/M5, the plane,
+(G20/G21), then in one block the feed mode, F (not in G93; one decimal), S (a whole
+number), M3/M4/M5, the plane,
 tool length (G43 H/G43.1 Z/G49), work system, path mode (G61/G61.1/G64 P Q), distance
 mode, arc centre mode and the canned-cycle return level.  ``M72`` with nothing saved
 at its level is an error (rs274's text).
@@ -70,9 +71,9 @@ def restore_blocks(it: Interpreter, s: Saved) -> tuple[Words, Words]:
     if now.feed_mode != s.feed_mode:
         out.append(("G", s.feed_mode))
     if now.feed != s.feed and s.feed_mode != 93.0:
-        out.append(("F", s.feed))
+        out.append(("F", float(f"{s.feed:.1f}")))  # rs274 writes the restore line's F with one decimal
     if now.rpm != s.rpm:
-        out.append(("S", s.rpm))
+        out.append(("S", float(f"{s.rpm:.0f}")))  # and S with none
     if now.spindle is not s.spindle and s.spindle in _SPINDLE:
         out.append(("M", _SPINDLE[s.spindle]))
     if now.plane is not s.plane and s.plane in _PLANES:
