@@ -69,6 +69,8 @@ def _track_feed(it: Interpreter, ctx: BlockContext) -> None:
 
     if not state(it).inverse_time and "F" in ctx.words:
         _state(it).units_feed = ctx.words["F"].value
+    if any(c.op in PROBE_OPS for c in ctx.codes) and not any(k in ctx.words for k in ops.AXES_OR_POLAR):
+        _fail(it, ctx, "probe_no_axes", "All axes missing with motion code")  # a G38.x block must move
 
 
 ops.BLOCK_HOOKS.append(_track_feed)

@@ -64,6 +64,7 @@ CASES: dict[str, str | tuple[str, str]] = {
     "probe_zero_feed": "G21\nG38.2 Z-5\nM2\n",
     "probe_comp_on": "G21\nG41.1 D2\nG38.2 Z-5\nM2\n",
     "probe_too_close": "G21 F100\nG38.2 Z0\nM2\n",
+    "probe_without_axes": "G21 F100\nG38.2\nM2\n",
     "probe_in_inverse_time": "G21 F100\nG93\nG38.2 Z-5 F10\nG1 X1 F3\nM2\n",
     "polar_incremental": "G21\nG0 X3 Y4\nG91 G0 @1 ^90\nG90 G1 F100 @2\nM2\n",
     "polar_with_x": "G21\nG0 X1 @5 ^30\nM2\n",
