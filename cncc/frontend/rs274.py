@@ -331,7 +331,14 @@ ops.BLOCK_HOOKS.append(_inverse_time_feed)
 
 
 from cncc.frontend import rs274_curves as _curves  # noqa: E402,F401  (G5, G5.1, G5.2/G5.3)
-from cncc.frontend import rs274_probe as _probe  # noqa: E402,F401  (G38.2 - G38.5)
+from cncc.frontend import rs274_probe as _probe  # noqa: E402  (G38.2 - G38.5)
 from cncc.frontend import rs274_sync as _sync  # noqa: E402,F401  (G33, G33.1)
-from cncc.frontend import rs274_tools as _tools  # noqa: E402,F401  (M61)
-from cncc.frontend import rs274_words as _words  # noqa: E402,F401  (@ ^ polar words, $ spindle number)
+from cncc.frontend import rs274_tools as _tools  # noqa: E402  (M61)
+from cncc.frontend import rs274_words as _words  # noqa: E402  (@ ^ polar words, $ spindle number)
+
+# These three modules import none of the handler modules (no import circle): they are registered here.
+ops.HANDLERS.update(dict.fromkeys(_probe.PROBE_OPS, _probe.select))
+ops.MOTIONS.update(_probe.motions())
+ops.BLOCK_HOOKS.append(_probe.track_feed)
+ops.HANDLERS["set_tool_number"] = _tools.m61
+ops.BLOCK_HOOKS.insert(0, _words.spindle_word)

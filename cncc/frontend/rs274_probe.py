@@ -28,14 +28,15 @@ from weakref import WeakKeyDictionary
 
 from cncc import diagnostics as dg
 from cncc.dialects import CodeDef
-from cncc.frontend import ops
-from cncc.frontend.rs274_g10 import controller_error
 from cncc.ir import CompSide, FeedRate, Linear, SetMode, Vec6
 
 if TYPE_CHECKING:
     from cncc.frontend.interp import BlockContext, Interpreter
+    from cncc.frontend.ops import MotionHandler
 
+# Registered by cncc/frontend/rs274.py (this module imports nothing of the handler modules: no import circle).
 PROBE_OPS = ("probe_toward", "probe_toward_noerr", "probe_away", "probe_away_noerr")
+PROBE_AXES = "XYZABC@^"
 BACKOFF_MM = 0.254  # the stand-alone canon's back-off: 0.254 mm in G21, 0.01 inch in G20
 
 
@@ -64,33 +65,28 @@ def take_result(it: Interpreter) -> tuple[float, ...] | None:
     return got
 
 
-def _track_feed(it: Interpreter, ctx: BlockContext) -> None:
-    from cncc.frontend.rs274 import state
-
-    if not state(it).inverse_time and "F" in ctx.words:
+def track_feed(it: Interpreter, ctx: BlockContext) -> None:
+    """Block hook: rs274's feed rate (an F outside G93), and a G38.x block without axis words."""
+    if not it.modal.path.inverse_time and "F" in ctx.words:
         _state(it).units_feed = ctx.words["F"].value
-    if any(c.op in PROBE_OPS for c in ctx.codes) and not any(k in ctx.words for k in ops.AXES_OR_POLAR):
+    if any(c.op in PROBE_OPS for c in ctx.codes) and not any(k in ctx.words for k in PROBE_AXES):
         _fail(it, ctx, "probe_no_axes", "All axes missing with motion code")  # a G38.x block must move
 
 
-ops.BLOCK_HOOKS.append(_track_feed)
-
-
-@ops.handler(*PROBE_OPS)
-def _select(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
+def select(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     it.modal = it.modal.with_(motion=c.op, cycle="")
 
 
 def _fail(it: Interpreter, ctx: BlockContext, key: str, default: str) -> None:
-    it.emit_error(dg.CONTROLLER_REJECTS, ctx.span, controller_error(it, key, default))
+    text = str(it.dialect.raw.get("errors", {}).get(key, default))  # the controller's own text
+    it.emit_error(dg.CONTROLLER_REJECTS, ctx.span, text)
 
 
 def _probe(it: Interpreter, ctx: BlockContext, end: Vec6, op: str, code: str) -> None:
-    from cncc.frontend.rs274 import state
-
     if it.frame.comp_side is not CompSide.OFF:
         return _fail(it, ctx, "probe_comp", "Cannot probe with cutter radius comp on")
-    feed = _state(it).units_feed if state(it).inverse_time else (it.modal.feed or 0.0)
+    inverse_time = it.modal.path.inverse_time
+    feed = _state(it).units_feed if inverse_time else (it.modal.feed or 0.0)
     if feed <= 0.0:
         return _fail(it, ctx, "probe_zero_feed", "Cannot probe with zero feed rate")
     if it.modal.per_rev:
@@ -98,11 +94,11 @@ def _probe(it: Interpreter, ctx: BlockContext, end: Vec6, op: str, code: str) ->
     start = it.pos
     if start == end:
         return _fail(it, ctx, "probe_too_close", "Start point too close to probe point")
-    if state(it).inverse_time:  # the block's F is not a feed rate to rs274: no SET_FEED_RATE for it
+    if inverse_time:  # the block's F is not a feed rate to rs274: no SET_FEED_RATE for it
         ctx.out[:] = [c for c in ctx.out if not isinstance(c, FeedRate)]
     k = it.frame.units.mm_per_unit
     feed_mm = feed * k
-    motion = ops.block_motion(it, ctx)
+    motion = it.modal.path
     d = [start[i] - end[i] for i in range(3)]
     dist = math.sqrt(d[0] ** 2 + d[1] ** 2 + d[2] ** 2)
     after = end
@@ -118,9 +114,9 @@ def _probe(it: Interpreter, ctx: BlockContext, end: Vec6, op: str, code: str) ->
     _state(it).result = (end[0] / k, end[1] / k, end[2] / k, end[3], end[4], end[5], 0.0, 0.0, 0.0, 0.0)
 
 
-def _motion_for(op: str, code: str) -> ops.MotionHandler:
-    return lambda it, ctx, end: _probe(it, ctx, end, op, code)
+def motions() -> dict[str, MotionHandler]:
+    """The motion handler of each probe mode."""
+    def one(op: str, code: str) -> MotionHandler:
+        return lambda it, ctx, end: _probe(it, ctx, end, op, code)
 
-
-for _op, _code in zip(PROBE_OPS, ("G38.2", "G38.3", "G38.4", "G38.5"), strict=True):
-    ops.MOTIONS[_op] = _motion_for(_op, _code)
+    return {op: one(op, code) for op, code in zip(PROBE_OPS, ("G38.2", "G38.3", "G38.4", "G38.5"), strict=True)}

@@ -18,8 +18,6 @@ import math
 from typing import TYPE_CHECKING
 
 from cncc import diagnostics as dg
-from cncc.frontend import ops
-from cncc.frontend.rs274_g10 import controller_error
 from cncc.frontend.syntax import Word
 
 if TYPE_CHECKING:
@@ -32,7 +30,8 @@ _NO_USER = ("$ (spindle selection) word with no M3, M4, M5, M19, M51, G33, G33.1
 
 
 def _fail(it: Interpreter, ctx: BlockContext, key: str, default: str) -> bool:
-    it.emit_error(dg.CONTROLLER_REJECTS, ctx.span, controller_error(it, key, default))
+    text = str(it.dialect.raw.get("errors", {}).get(key, default))  # the controller's own text
+    it.emit_error(dg.CONTROLLER_REJECTS, ctx.span, text)
     return False
 
 
@@ -70,7 +69,8 @@ def polar_to_xy(it: Interpreter, ctx: BlockContext) -> bool:
     return True
 
 
-def _spindle_word(it: Interpreter, ctx: BlockContext) -> None:
+def spindle_word(it: Interpreter, ctx: BlockContext) -> None:
+    """Block hook (registered first by cncc/frontend/rs274.py): check and drop the ``$`` word."""
     w = ctx.words.pop("$", None)
     if w is None:
         return
@@ -88,5 +88,3 @@ def _spindle_word(it: Interpreter, ctx: BlockContext) -> None:
     _fail(it, ctx, "spindle_number_m", f"Spindle ($) number out of range in {m.replace('M0', 'M')} Command"
           if m else "Invalid spindle ($) number")
 
-
-ops.BLOCK_HOOKS.insert(0, _spindle_word)
