@@ -92,9 +92,12 @@ def run_rs274(text: str, tool_table: str = "", *, exe: Path | None = None, ini: 
         tbl = Path(tmp) / "tool.tbl"
         tbl.write_text(tool_table)
         ini_args = _write_ini(tmp, ini, files)
+        # rs274 keeps the tool table in $HOME/.tool.mmap: runs at the same time (other tests, other
+        # checkouts) would read each other's tables ("Requested tool N not found"), so each run has its HOME.
+        env = {**os.environ, "HOME": tmp}
         for _ in range(3):  # rs274 now and then exits non-zero without a message: run it again
             p = subprocess.run([str(exe), *ini_args, "-t", str(tbl), "-g", str(prog)], capture_output=True,
-                               text=True, timeout=30, cwd=tmp)
+                               text=True, timeout=30, cwd=tmp, env=env)
             err_lines = [ln for ln in p.stderr.splitlines() if ln.strip() and ln.strip() != "executing"]
             if p.returncode == 0 or err_lines:
                 break
