@@ -16,6 +16,7 @@ import os
 import re
 from collections.abc import Iterator
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 from cncc import diagnostics as dg
 from cncc.diagnostics import DiagnosticSink, Related
@@ -25,12 +26,14 @@ from cncc.frontend.interp import Interpreter
 from cncc.frontend.linuxcnc.builder import oword_of
 from cncc.frontend.linuxcnc.evaluate import EvalError, Evaluator, Parameters, Scope
 from cncc.frontend.linuxcnc.flow import FlowIndex
-from cncc.frontend.linuxcnc.modal_save import Saved
 from cncc.frontend.linuxcnc.report import Before, Reporter
 from cncc.frontend.parser import Parser
 from cncc.frontend.syntax import Assign, Block, CommentItem, Word
 from cncc.ir import Command, Message
 from cncc.source import SourceFile, Span
+
+if TYPE_CHECKING:
+    from cncc.frontend.linuxcnc.modal_save import Saved
 
 _MESSAGE = re.compile(r"^\(\s*(MSG|DEBUG|PRINT|ABORT)\s*,(.*)\)$", re.IGNORECASE | re.DOTALL)
 _PARAM_IN_TEXT = re.compile(r"#\s*<[^>]*>|#\d+")

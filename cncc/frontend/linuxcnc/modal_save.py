@@ -18,8 +18,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
-from cncc.frontend.cycles import spindle_state
-from cncc.frontend.rs274 import state
 from cncc.ir import PathMode, Plane, SpindleState, Units
 
 if TYPE_CHECKING:
@@ -48,6 +46,9 @@ class Saved:
 
 
 def save(it: Interpreter) -> Saved:
+    from cncc.frontend.cycles import spindle_state  # (imported here: the executor loads this module early)
+    from cncc.frontend.rs274 import state
+
     st = state(it)
     f = it.frame
     mode = 93.0 if st.inverse_time else 95.0 if it.modal.per_rev else 94.0
