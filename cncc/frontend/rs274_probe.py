@@ -24,17 +24,16 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
-from weakref import WeakKeyDictionary
 
 from cncc import diagnostics as dg
 from cncc.dialects import CodeDef
+from cncc.frontend import registry
 from cncc.ir import CompSide, FeedRate, Linear, SetMode, Vec6
 
 if TYPE_CHECKING:
     from cncc.frontend.interp import BlockContext, Interpreter
-    from cncc.frontend.ops import MotionHandler
+    from cncc.frontend.registry import MotionHandler
 
-# Registered by cncc/frontend/rs274.py (this module imports nothing of the handler modules: no import circle).
 PROBE_OPS = ("probe_toward", "probe_toward_noerr", "probe_away", "probe_away_noerr")
 PROBE_AXES = "XYZABC@^"
 BACKOFF_MM = 0.254  # the stand-alone canon's back-off: 0.254 mm in G21, 0.01 inch in G20
@@ -46,19 +45,14 @@ class ProbeState:
     result: tuple[float, ...] | None = None  # #5061-#5070 of the last probe, not yet written
 
 
-_STATES: WeakKeyDictionary[Interpreter, ProbeState] = WeakKeyDictionary()
-
-
 def _state(it: Interpreter) -> ProbeState:
-    st = _STATES.get(it)
-    if st is None:
-        st = _STATES[it] = ProbeState()
-    return st
+    st = it.extras.get(ProbeState)
+    return st if st is not None else it.extras.attach(ProbeState())
 
 
 def take_result(it: Interpreter) -> tuple[float, ...] | None:
     """#5061 .. #5070 of a probe made since the last call (program units, degrees), or None."""
-    st = _STATES.get(it)
+    st = it.extras.get(ProbeState)
     if st is None or st.result is None:
         return None
     got, st.result = st.result, None
@@ -73,6 +67,7 @@ def track_feed(it: Interpreter, ctx: BlockContext) -> None:
         _fail(it, ctx, "probe_no_axes", "All axes missing with motion code")  # a G38.x block must move
 
 
+@registry.handler(*PROBE_OPS)
 def select(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     it.modal = it.modal.with_(motion=c.op, cycle="")
 
@@ -114,9 +109,10 @@ def _probe(it: Interpreter, ctx: BlockContext, end: Vec6, op: str, code: str) ->
     _state(it).result = (end[0] / k, end[1] / k, end[2] / k, end[3], end[4], end[5], 0.0, 0.0, 0.0, 0.0)
 
 
-def motions() -> dict[str, MotionHandler]:
-    """The motion handler of each probe mode."""
-    def one(op: str, code: str) -> MotionHandler:
-        return lambda it, ctx, end: _probe(it, ctx, end, op, code)
+def _motion_for(op: str, code: str) -> MotionHandler:
+    return lambda it, ctx, end: _probe(it, ctx, end, op, code)
 
-    return {op: one(op, code) for op, code in zip(PROBE_OPS, ("G38.2", "G38.3", "G38.4", "G38.5"), strict=True)}
+
+for _op, _code in zip(PROBE_OPS, ("G38.2", "G38.3", "G38.4", "G38.5"), strict=True):
+    registry.MOTIONS[_op] = _motion_for(_op, _code)
+registry.BLOCK_HOOKS.append(track_feed)

@@ -19,6 +19,7 @@ from typing import TYPE_CHECKING
 
 from cncc import diagnostics as dg
 from cncc.dialects import CodeDef
+from cncc.frontend import registry
 from cncc.ir import SetMode
 
 if TYPE_CHECKING:
@@ -29,8 +30,8 @@ def controller_error(it: Interpreter, key: str, default: str) -> str:
     return str(it.dialect.raw.get("errors", {}).get(key, default))
 
 
+@registry.handler("set_tool_number")
 def m61(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
-    """The ``set_tool_number`` handler (registered by cncc/frontend/rs274.py)."""
     qw = ctx.words.get("Q")
     tool = math.floor(qw.value + 0.5) if qw is not None else -1
     if tool < 0:

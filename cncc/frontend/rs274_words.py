@@ -18,6 +18,7 @@ import math
 from typing import TYPE_CHECKING
 
 from cncc import diagnostics as dg
+from cncc.frontend import registry
 from cncc.frontend.syntax import Word
 
 if TYPE_CHECKING:
@@ -70,7 +71,7 @@ def polar_to_xy(it: Interpreter, ctx: BlockContext) -> bool:
 
 
 def spindle_word(it: Interpreter, ctx: BlockContext) -> None:
-    """Block hook (registered first by cncc/frontend/rs274.py): check and drop the ``$`` word."""
+    """Block hook: check and drop the ``$`` word."""
     w = ctx.words.pop("$", None)
     if w is None:
         return
@@ -88,3 +89,5 @@ def spindle_word(it: Interpreter, ctx: BlockContext) -> None:
     _fail(it, ctx, "spindle_number_m", f"Spindle ($) number out of range in {m.replace('M0', 'M')} Command"
           if m else "Invalid spindle ($) number")
 
+
+registry.BLOCK_HOOKS.append(spindle_word)

@@ -1,0 +1,37 @@
+"""A running LinuxCNC program or subroutine: the executor's call stack entry.
+
+Apart from :mod:`~cncc.frontend.linuxcnc.executor` so that the O-word and M98 control
+flow (:mod:`~cncc.frontend.linuxcnc.control`) can push frames without importing the
+executor (no import circle; tests/test_layers.py).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
+
+from cncc.frontend.linuxcnc.flow import FlowIndex
+from cncc.source import Span
+
+if TYPE_CHECKING:
+    from cncc.frontend.linuxcnc.modal_save import Saved
+
+
+@dataclass(slots=True)
+class Frame:
+    """One running program or subroutine."""
+
+    index: FlowIndex
+    pc: int
+    name: str = "main"
+    return_pc: int = -1
+    caller: Frame | None = None
+    call_span: Span | None = None
+    repeats: dict[int, int] = field(default_factory=dict)
+    m98_count: int = 0
+    m98_start: int = 0
+    modal_saved: Saved | None = None  # M70 / M73 (cncc/frontend/linuxcnc/modal_save.py)
+    auto_restore: bool = False  # M73: restore modal_saved when this call returns
+
+
+__all__ = ["Frame"]
