@@ -186,7 +186,8 @@ def compile(text_or_path: str | os.PathLike[str], dialect: str | None = None, ma
 
     path = os.fspath(text_or_path) if _is_path(text_or_path) else None
     given = {name for name, value in (("dialect", dialect), ("machine", machine)) if value is not None}
-    given |= {k for k in ("target", "opt_level", "offsets_file", "tools_file", "dialect_options") if k in options}
+    given |= {k for k in ("target", "opt_level", "offsets_file", "tools_file", "ini_file", "dialect_options")
+              if k in options}
     fmt = options.pop("report_format", "json")
     opts = Options(inputs=[path or "-"], dialect=dialect, machine=machine or DEFAULT_MACHINE, emit=emit,
                    project_config=True, given=frozenset(given),

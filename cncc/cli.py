@@ -41,6 +41,8 @@ def _parser() -> argparse.ArgumentParser:
     p.add_argument("-w", dest="no_warnings", action="store_true", help="report no warnings")
     p.add_argument("--offsets", dest="offsets_file", help="work offsets table (TOML)")
     p.add_argument("--tools", dest="tools_file", help="tool table (TOML or LinuxCNC .tbl)")
+    p.add_argument("--ini", dest="ini_file", metavar="FILE",
+                   help="LinuxCNC INI file: SUBROUTINE_PATH, #<_ini[section]name>, DISABLE_FANUC_STYLE_SUB")
     p.add_argument("--report-format", default="text", choices=["text", "json", "html"], help="timing report format")
     p.add_argument("--compare", default="", metavar="COLS",
                    help="timing report columns: planner levels and/or machines, e.g. O0,O1,O2 or szgh-990mdb@O1")
@@ -221,11 +223,12 @@ def build_options(ns: argparse.Namespace, error: Any, rep: Reporting | None = No
     rep = rep if rep is not None else Reporting()
     given = {f for f, v in (("dialect", ns.dialect), ("target", ns.target), ("machine", ns.machine),
                              ("offsets_file", ns.offsets_file), ("tools_file", ns.tools_file),
+                             ("ini_file", ns.ini_file),
                              ("opt_level", ns.opt_level)) if v is not None}
     opts = Options(inputs=list(ns.inputs), dialect=ns.dialect, target=ns.target,
                    machine=ns.machine or DEFAULT_MACHINE, emit=ns.emit, output=ns.output,
                    opt_level=2 if ns.opt_level is None else ns.opt_level, offsets_file=ns.offsets_file,
-                   tools_file=ns.tools_file, report_format=ns.report_format,
+                   tools_file=ns.tools_file, ini_file=ns.ini_file, report_format=ns.report_format,
                    compare=ns.compare, annotate_time=ns.annotate_time,
                    pulse_format=ns.pulse_format, pulse_mode=ns.pulse_mode)
     opts.verbose = ns.verbose

@@ -5,12 +5,12 @@ Where a setting of one program file comes from, lowest precedence first:
 1. the built-in default;
 2. ``cncc.toml``, the nearest one found walking up from the file's folder (the
    language server stops at the workspace root).  Top-level keys, or the same keys in a
-   ``[cncc]`` table: ``dialect``, ``target``, ``machine``, ``offsets``, ``tools``,
+   ``[cncc]`` table: ``dialect``, ``target``, ``machine``, ``offsets``, ``tools``, ``ini``,
    ``opt_level`` (also ``opt-level``) and an ``[options]`` table of dialect options.
    Relative paths are relative to the folder of ``cncc.toml``; ``[lsp]`` holds the
    editor's own settings;
 3. the modeline ``(cncc: dialect=NAME)`` in the file's first 2000 characters;
-4. the command line (``-x``, ``-t``, ``-m``, ``--offsets``, ``--tools``, ``-O``,
+4. the command line (``-x``, ``-t``, ``-m``, ``--offsets``, ``--tools``, ``--ini``, ``-O``,
    ``-fNAME=VALUE``) — or, in the editor, the client's settings (which a modeline
    still overrides, as before).
 
@@ -30,9 +30,9 @@ from typing import Any
 CONFIG_NAME = "cncc.toml"
 MODELINE_RE = re.compile(r"cncc\s*:\s*dialect\s*=\s*([\w./-]+)", re.IGNORECASE)
 MODELINE_WINDOW = 2000  # characters at the start of a file where a modeline counts
-PATH_KEYS = ("offsets", "tools")  # always file names
+PATH_KEYS = ("offsets", "tools", "ini")  # always file names
 MAYBE_PATH_KEYS = ("dialect", "target", "machine")  # names, or a .toml file
-KEYS = ("dialect", "target", "machine", "offsets", "tools", "opt_level", "options")
+KEYS = ("dialect", "target", "machine", "offsets", "tools", "ini", "opt_level", "options")
 
 
 def find_config(folder: str, stop_at: str | None = None) -> str | None:

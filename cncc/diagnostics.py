@@ -249,6 +249,8 @@ XL_INCREMENT_UNKNOWN_START = _define("E0860", E, "a G91 move of an axis whose po
                                      "from an assumed position")
 XL_RETURN_START = _define("E0861", E, "a return to the program's start point (SZGH G26) that the target cannot write: "
                           "the start is wherever the machine was")
+XL_NO_PROBE = _define("E0883", E, "a G38.x probe move the target dialect cannot write (it has no probing): the move "
+                      "is not translated")
 TARGET_UNSUPPORTED = _define("W0890", W, "a code the target dialect has no counterpart for")
 ANALYSIS_STOPPED = _define("N0990", N, "the editor stopped analysing a document at its time budget")
 
@@ -262,6 +264,8 @@ OUTPUT_IS_INPUT = _define("E0906", E, "the output file would overwrite an input 
 SETTING_ORIGIN = _define("N0907", N, "-v: where a setting came from (command line, modeline, cncc.toml, default)")
 BAD_PROJECT_CONFIG = _define("E0908", E, "a cncc.toml project file is malformed")
 NUMPY_WARNING = _define("W0909", W, "a numerical warning (overflow, invalid value) raised while computing")
+INI_UNREADABLE = _define("E0983", E, "the --ini file cannot be read")
+INI_BAD_LINE = _define("E0984", E, "a line of the --ini file is not a section, a NAME = VALUE line or a comment")
 BAD_PASS_SPEC = _define("E0991", E, "-p, --print-after: an unknown pass, an unknown option or a bad value")
 IR_INVARIANT = _define("E0992", E, "--verify-each: a pass broke an IR invariant (continuity, spans, machine frame)")
 

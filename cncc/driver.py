@@ -42,6 +42,7 @@ class Options:
     opt_level: int = 2
     offsets_file: str | None = None
     tools_file: str | None = None
+    ini_file: str | None = None  # --ini: a LinuxCNC INI file (cncc/inifile.py)
     dialect_options: dict[str, Any] = field(default_factory=dict)
     block_delete: bool = True
     repair_arcs: bool = False
@@ -213,11 +214,14 @@ def load_tables(opts: Options, sink: DiagnosticSink) -> tuple[dict[int, Vec6], d
 
 # ---- pipeline ---------------------------------------------------------------------------
 def front_end(src: SourceFile, dialect: Dialect, machine: MachineModel, opts: Options,
-              sink: DiagnosticSink, sources: SourceMap | None = None, deps: list[str] | None = None
-              ) -> Iterator[Command]:
+              sink: DiagnosticSink, sources: SourceMap | None = None, deps: list[str] | None = None,
+              ini: Any = None) -> Iterator[Command]:
     from cncc.frontend import lower
 
-    return lower(src, dialect, sink, interp_options(opts, machine, sink), macro_options(opts, sink, sources, deps))
+    if ini is None and opts.ini_file:
+        ini = load_ini(opts, sink, sources)
+    return lower(src, dialect, sink, interp_options(opts, machine, sink),
+                 macro_options(opts, sink, sources, deps, ini))
 
 
 def interp_options(opts: Options, machine: MachineModel, sink: DiagnosticSink) -> Any:
@@ -238,8 +242,17 @@ def interp_options(opts: Options, machine: MachineModel, sink: DiagnosticSink) -
     return iopts
 
 
+def load_ini(opts: Options, sink: DiagnosticSink, sources: SourceMap | None) -> Any:
+    """The --ini file's settings (cncc/inifile.py), or None."""
+    if not opts.ini_file:
+        return None
+    from cncc.inifile import read_ini
+
+    return read_ini(opts.ini_file, sources if sources is not None else SourceMap(), sink)
+
+
 def macro_options(opts: Options, sink: DiagnosticSink, sources: SourceMap | None,
-                  deps: list[str] | None = None) -> Any:
+                  deps: list[str] | None = None, ini: Any = None) -> Any:
     """The macro executor's options: -D presets, -I folders, --max-steps, --io, --write-dir."""
     from cncc.frontend.macro import MacroOptions
     from cncc.frontend.macro.iofile import IoFileError, read_io
@@ -259,8 +272,10 @@ def macro_options(opts: Options, sink: DiagnosticSink, sources: SourceMap | None
         return None if src is None else SourceFile(1_000_000 + src.source_id, src.name, src.text)
 
     protected = tuple(os.path.realpath(p) for p in opts.inputs if p != "-")
-    include = tuple(opts.include_dirs) + dialect_library(opts)
+    include = tuple(opts.include_dirs) + (ini.subroutine_dirs() if ini is not None else ()) + dialect_library(opts)
     return MacroOptions(presets=dict(opts.defines), include_dirs=include, max_steps=opts.max_steps,
+                        ini_parameters=ini.parameters() if ini is not None else {},
+                        ini_no_fanuc_subs=ini is not None and ini.flag("RS274NGC", "DISABLE_FANUC_STYLE_SUB"),
                         io_inputs=io, write_dir=opts.write_dir, load_source=load, protected_paths=protected,
                         files_used=deps if deps is not None else [],
                         call_markers=opts.keep_subprograms and opts.emit == "gcode" and not opts.expand,
@@ -430,7 +445,7 @@ def guessed_dialect(src: SourceFile, opts: Options, sink: DiagnosticSink) -> Dia
 
 # options -> cncc.toml keys (cncc/config.py)
 CONFIG_FIELDS = {"dialect": "dialect", "target": "target", "machine": "machine", "offsets": "offsets_file",
-                 "tools": "tools_file", "opt_level": "opt_level", "options": "dialect_options"}
+                 "tools": "tools_file", "ini": "ini_file", "opt_level": "opt_level", "options": "dialect_options"}
 
 
 def file_options(opts: Options, path: str, src: SourceFile, sink: DiagnosticSink) -> Options:
@@ -494,6 +509,7 @@ def compile_files(opts: Options, stdin: TextIO | None = None) -> Result:
     ins = instrumentation(opts, sources)
     manager = PassManager(ins)
     chunks: list[str] = []
+    inis: dict[str, Any] = {}
     base_dialect, base_machine, base_opts = dialect, machine, opts
     for path in base_opts.inputs or ["-"]:
         if sink.limit_reached:
@@ -505,14 +521,18 @@ def compile_files(opts: Options, stdin: TextIO | None = None) -> Result:
         if setup is None:
             continue
         opts, dialect, machine = setup
+        ini = None
+        if opts.ini_file:  # read once per run (its problems reported once)
+            ini = inis[opts.ini_file] if opts.ini_file in inis else inis.setdefault(
+                opts.ini_file, load_ini(opts, sink, sources))
         result.dialects[src.name] = dialect.name
         ins.unit = src.name
         deps = result.deps.setdefault(src.name, [])
         if opts.list_deps:  # -M: run the front end, list the subprogram files it loaded
-            for _ in until_limit(front_end(src, dialect, machine, opts, sink, sources, deps), sink):
+            for _ in until_limit(front_end(src, dialect, machine, opts, sink, sources, deps, ini), sink):
                 pass
             continue
-        cmds = path_passes(until_limit(front_end(src, dialect, machine, opts, sink, sources, deps), sink),
+        cmds = path_passes(until_limit(front_end(src, dialect, machine, opts, sink, sources, deps, ini), sink),
                            dialect, machine, opts, sink, manager)
         if opts.expand:
             cmds = with_line_map(cmds, sources)

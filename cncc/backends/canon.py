@@ -111,7 +111,7 @@ def canon_lines(cmds: Iterable[Command], *, initial_frame: Frame | None = None,
             yield PREFIX + line
             continue
         match c:
-            case SetMode(name="rigid_tap" | "nurbs_feed") if fmt.has(c.name):
+            case SetMode(name="rigid_tap" | "nurbs_feed" | "probe") if fmt.has(c.name):
                 skip = int(c.value[-1])
                 yield from _lines(fmt, c.name, **_folded_fields(c))
             case SetMode():
@@ -174,9 +174,9 @@ def _other(c: Command) -> tuple[str, dict[str, Any]]:
 
 def _folded_fields(c: SetMode) -> dict[str, Any]:
     k = c.frame.units.mm_per_unit
-    if c.name == "rigid_tap":  # value: (end Vec6, commands folded)
+    if c.name in ("rigid_tap", "probe"):  # value: (end Vec6, [code,] commands folded)
         end = c.value[0]
-        return {"x": end[0] / k, "y": end[1] / k, "z": end[2] / k}
+        return {"x": end[0] / k, "y": end[1] / k, "z": end[2] / k, "a": end[3], "b": end[4], "c": end[5]}
     points, order, _ = c.value  # nurbs_feed: (control points, order, commands folded)
     return {"points": points, "order": order}
 
@@ -207,6 +207,8 @@ def _set_mode(c: SetMode, last_g5x: str, last_g92: str, fmt: CanonFormat) -> Ite
         yield from _tool_table(c, fmt)
     elif c.name == "overrides":  # value: True (on) / False (off)
         yield from _lines(fmt, "overrides_on" if c.value else "overrides_off")
+    elif c.name == "tool_number":
+        yield from _lines(fmt, "tool_number", tool=int(c.value))
     elif c.name == "feed_override":  # value: True (on) / False (off)
         yield from _lines(fmt, "feed_override_on" if c.value else "feed_override_off")
     elif c.name == "spindle_mode":

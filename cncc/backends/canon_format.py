@@ -48,6 +48,8 @@ DEFAULTS: dict[str, str | list[str]] = {
     "spindle_sync_on": [],  # G33 / G33.1 / tapping: {pitch} in program units per revolution
     "spindle_sync_off": [],
     "rigid_tap": [],  # G33.1 as one call {x} {y} {z}; the moves after the marker are not written
+    "probe": "STRAIGHT_PROBE({x}, {y}, {z}, {a}, {b}, {c})",  # G38.x: the probe move (and back-off) after the marker
+    "tool_number": [],  # M61 Q: {tool}
     "nurbs_feed": [],  # G5 / G5.1 / G5.2 as one call {points} {order}; its segments are not written
     "spindle_mode": [],
     "xy_rotation": [],  # after a work-system change: {deg}  # the spindle mode reset at a program end: {css_max}

@@ -56,6 +56,7 @@ if TYPE_CHECKING:
 
 
 AXES = "XYZABC"
+AXES_OR_POLAR = "XYZABC@^"  # LinuxCNC's @ radius and ^ angle stand for X and Y (cncc/frontend/rs274_words.py)
 
 
 # ---- block driver -----------------------------------------------------------------
@@ -77,7 +78,7 @@ def run_block(it: Interpreter, ctx: BlockContext) -> None:
     for c in gs:
         if c not in early:
             _dispatch(it, ctx, c)
-    if not ctx.axis_used and (any(k in ctx.words for k in AXES) or _full_circle(it, ctx)):
+    if not ctx.axis_used and (any(k in ctx.words for k in AXES_OR_POLAR) or _full_circle(it, ctx)):
         _motion(it, ctx)
     elif ctx.axis_used and any(k in ctx.words for k in AXES):
         _note_taken_words(it, ctx, gs)
@@ -184,6 +185,11 @@ def _release_named(it: Interpreter, ctx: BlockContext, cycle: bool) -> None:
 
 
 def _motion(it: Interpreter, ctx: BlockContext) -> None:
+    if "@" in ctx.words or "^" in ctx.words:
+        from cncc.frontend.rs274_words import polar_to_xy
+
+        if not polar_to_xy(it, ctx):
+            return
     _release_named(it, ctx, bool(it.modal.cycle))
     if it.modal.cycle:
         fn = it.table.motions.get("cycle")

@@ -41,13 +41,14 @@ def test_the_core_table_holds_every_registering_module() -> None:
     t = _table_after_importing("cncc.frontend.interp")
     hooks = t["hooks"]
     assert hooks == ["cncc.frontend.rs274._absolute_centres", "cncc.frontend.rs274._inverse_time_feed",
+                     "cncc.frontend.rs274_probe.track_feed", "cncc.frontend.rs274_words.spindle_word",
                      "cncc.frontend.transforms._lone_words"]
     handlers = t["handlers"]
     assert isinstance(handlers, list)
     # one op of each registering module: ops, cycles, holes, mcodes, rs274, rs274_curves,
-    # rs274_sync, saved_points, transforms
+    # rs274_sync, rs274_probe, rs274_tools, saved_points, transforms
     for op in ("rapid", "cycle", "pattern", "aux", "exact_path_mode", "nurbs_begin", "spindle_sync_rs274",
-               "save_point", "polar_on"):
+               "probe_toward", "set_tool_number", "save_point", "polar_on"):
         assert op in handlers
     assert t["wrapped_plane"] == "_guard_plane.<locals>.guarded"  # cycles.py's guard is on the shared plane op
 

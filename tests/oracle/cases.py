@@ -57,6 +57,26 @@ CASES: dict[str, str | tuple[str, str]] = {
     "g74_with_p": "G21 S500 M4\nF100\nG0 X0 Y0 Z10\nG98 G74 G90 X5 Y0 Z-10 R2 P1\nG80\nM2\n",
     "g87_with_p": "G21 S500 M3\nF100\nG0 X0 Y0 Z10\nG98 G87 G90 X5 Y0 Z2 R-10 Q2 P1 I1 J0 K-5\nG80\nM2\n",
     "tool_not_in_table": "G21\nT1 M6\nM2\n",
+    # issue 24's missing codes (tests/oracle/programs_codes.py generates more)
+    "probe_g38_3_incremental": "G21 F100\nG91 G38.3 Z-2\nG38.3 Z-1\nG90 G1 X#5063 Y#5070\nM2\n",
+    "probe_after_offsets_inch": "G20 F10\nG10 L2 P1 X1 Y2 Z3\nG92 X1\nG38.2 X2 Y1 Z-5\nG1 X#5061 Y#5062 Z#5063\nM2\n",
+    "probe_away_a_only": "G21 F100\nG38.4 A3\nG38.5 Z1\nG1 X#5064\nM2\n",
+    "probe_zero_feed": "G21\nG38.2 Z-5\nM2\n",
+    "probe_comp_on": "G21\nG41.1 D2\nG38.2 Z-5\nM2\n",
+    "probe_too_close": "G21 F100\nG38.2 Z0\nM2\n",
+    "probe_without_axes": "G21 F100\nG38.2\nM2\n",
+    "probe_in_inverse_time": "G21 F100\nG93\nG38.2 Z-5 F10\nG1 X1 F3\nM2\n",
+    "polar_incremental": "G21\nG0 X3 Y4\nG91 G0 @1 ^90\nG90 G1 F100 @2\nM2\n",
+    "polar_with_x": "G21\nG0 X1 @5 ^30\nM2\n",
+    "polar_without_motion": "G21\n@5 ^30\nM2\n",
+    "dollar_without_user": "G21\nG0 X1 $0\nM2\n",
+    "dollar_out_of_range": "G21\nM3 $1\nM2\n",
+    "m61_without_q": ("G21\nM61\nM2\n", TOOLS),
+    "m61_not_in_table": ("G21\nM61 Q7\nM2\n", TOOLS),
+    "m72_without_save": "G21\nM70\nM71\nM72\nM2\n",
+    "m73_in_sub": "G21\no100 sub\nM73\nG20 G91 F7 G64 P0.01 G19\nG0 X1\no100 endsub\no100 call\nG0 X1\nM2\n",
+    "m72_rounds_f_and_s": "G21 F12.36 S123.6 M3\nM70\nF50 S500\nM72\nM2\n",
+    "abort_in_sub": "G21\no100 sub\n(abort, in the sub #1)\no100 endsub\nG0 X1\no100 call [4]\nG0 X2\nM2\n",
     # lathe codes (G7/G8, G70-G72, G76): see LATHE below
 }
 

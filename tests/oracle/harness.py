@@ -31,7 +31,7 @@ WRAPPER_DEFAULT = Path(os.environ.get("XDG_CACHE_HOME", Path.home() / ".cache"))
 COMPARED = frozenset({
     "STRAIGHT_TRAVERSE", "STRAIGHT_FEED", "ARC_FEED", "STRAIGHT_PROBE", "RIGID_TAP",
     "SET_G5X_OFFSET", "SET_G92_OFFSET", "SET_XY_ROTATION", "USE_TOOL_LENGTH_OFFSET",
-    "CHANGE_TOOL", "SELECT_TOOL", "SET_FEED_RATE", "SELECT_PLANE", "USE_LENGTH_UNITS", "DWELL",
+    "CHANGE_TOOL", "CHANGE_TOOL_NUMBER", "SELECT_TOOL", "SET_FEED_RATE", "SELECT_PLANE", "USE_LENGTH_UNITS", "DWELL",
     "SET_FEED_MODE", "PROGRAM_END",
 })
 
@@ -78,7 +78,21 @@ class Run:
     codes: tuple[str, ...] = ()
 
 
-def run_rs274(text: str, tool_table: str = "", *, exe: Path | None = None) -> Run:
+Files = tuple[tuple[str, str], ...]  # (name, text): subroutine files in the folder "subs" beside the INI
+
+
+def _write_ini(tmp: str, ini: str, files: Files) -> list[str]:
+    """The INI file and its subroutine files in ``tmp``; the ``-i`` arguments (none without an INI)."""
+    for name, body in files:
+        (Path(tmp) / "subs").mkdir(exist_ok=True)
+        (Path(tmp) / "subs" / name).write_text(body)
+    if not ini:
+        return []
+    (Path(tmp) / "prog.ini").write_text(ini)
+    return ["-i", str(Path(tmp) / "prog.ini")]
+
+
+def run_rs274(text: str, tool_table: str = "", *, exe: Path | None = None, ini: str = "", files: Files = ()) -> Run:
     exe = exe or rs274_path()
     assert exe is not None, "rs274 is not installed (scripts/ensure-rs274.sh)"
     with tempfile.TemporaryDirectory(prefix="cncc-oracle-") as tmp:
@@ -86,10 +100,14 @@ def run_rs274(text: str, tool_table: str = "", *, exe: Path | None = None) -> Ru
         prog.write_text(text)
         tbl = Path(tmp) / "tool.tbl"
         tbl.write_text(tool_table)
+        ini_args = _write_ini(tmp, ini, files)
+        # rs274 keeps the tool table in $HOME/.tool.mmap: runs at the same time (other tests, other
+        # checkouts) read each other's tables ("Requested tool N not found"), so each run has its own HOME.
+        env = {**os.environ, "HOME": tmp}
         for _ in range(8):  # rs274 now and then exits non-zero without a message: run it again
             try:
-                p = subprocess.run([str(exe), "-t", str(tbl), "-g", str(prog)], capture_output=True, text=True,
-                                   timeout=WALL_TIMEOUT_S, cwd=tmp, preexec_fn=_limit_cpu)
+                p = subprocess.run([str(exe), *ini_args, "-t", str(tbl), "-g", str(prog)], capture_output=True,
+                                   text=True, timeout=WALL_TIMEOUT_S, cwd=tmp, preexec_fn=_limit_cpu, env=env)
             except subprocess.TimeoutExpired as exc:  # no verdict from rs274
                 out = exc.stdout.decode(errors="replace") if isinstance(exc.stdout, bytes) else (exc.stdout or "")
                 return Run(False, parse_trace(out), TIMED_OUT)
@@ -102,8 +120,9 @@ def run_rs274(text: str, tool_table: str = "", *, exe: Path | None = None) -> Ru
 
 
 def _table_race(error: str, tool_table: str) -> bool:
-    """rs274 2.9 now and then starts before its tool table is loaded: "Requested tool 1 not found in
-    the tool table" for a tool the table has (about half the runs on a loaded machine); run it again."""
+    """rs274 2.9 now and then reports "Requested tool 1 not found in the tool table" for a tool the
+    table has (another rs274 run rewrote the shared $HOME/.tool.mmap; each run now has its own HOME,
+    this stays as a safety net); run it again."""
     m = re.match(r"Requested tool (\d+) not found in the tool table", error)
     return m is not None and re.search(rf"^\s*T{m.group(1)}\b", tool_table, re.MULTILINE) is not None
 
@@ -118,7 +137,7 @@ def tool_table_mm(table: str) -> str:
     return "\n".join(rows) + "\n"
 
 
-def run_cncc(text: str, tool_table: str = "") -> Run:
+def run_cncc(text: str, tool_table: str = "", *, ini: str = "", files: Files = ()) -> Run:
     from cncc.api import compile_text
     from cncc.diagnostics import Severity
 
@@ -128,6 +147,8 @@ def run_cncc(text: str, tool_table: str = "") -> Run:
             tbl = Path(tmp) / "tool.tbl"
             tbl.write_text(tool_table_mm(tool_table))
             opts["tools_file"] = str(tbl)
+        if _write_ini(tmp, ini, files):  # SUBROUTINE_PATH is relative to the INI's folder for cncc, cwd for rs274
+            opts["ini_file"] = str(Path(tmp) / "prog.ini")
         r = compile_text(text, dialect="linuxcnc", emit="canon", **opts)
     errors = [d for d in r.sink if d.severity is Severity.ERROR]
     first = f"{errors[0].code}: {errors[0].message}" if errors else ""
@@ -172,9 +193,9 @@ def diff_calls(want: list[Call], got: list[Call], *, prefix: bool = False) -> st
     return ""
 
 
-def compare(text: str, tool_table: str = "") -> Verdict:
-    want = run_rs274(text, tool_table)
-    got = run_cncc(text, tool_table)
+def compare(text: str, tool_table: str = "", *, ini: str = "", files: Files = ()) -> Verdict:
+    want = run_rs274(text, tool_table, ini=ini, files=files)
+    got = run_cncc(text, tool_table, ini=ini, files=files)
     if want.error == TIMED_OUT:  # no verdict from rs274: never an agreement (allow.toml may accept it)
         d = diff_calls(want.calls[:len(got.calls)], got.calls, prefix=True)  # rs274 may repeat moves for ever
         what = "ok" if got.ok else " ".join(got.codes)

@@ -18,6 +18,8 @@ from dataclasses import dataclass
 class Program:
     text: str
     tool_table: str = ""
+    ini: str = ""  # a LinuxCNC INI file both interpreters read (rs274 -i, cncc --ini)
+    files: tuple[tuple[str, str], ...] = ()  # subroutine files in the folder "subs" beside the INI
 
 
 # In machine units, which are inches for the stand-alone rs274 (the harness scales them for cncc).
@@ -499,3 +501,12 @@ def generate(feature: str, count: int, seed: int = 0) -> list[Program]:
     """``count`` programs of ``feature``, the same ones for the same seed."""
     gen = FEATURES[feature]
     return [gen(random.Random(f"{feature}:{seed}:{i}")) for i in range(count)]
+
+
+def _register_codes() -> None:
+    from tests.oracle.programs_codes import FEATURES as CODES  # issue 24's missing codes
+
+    FEATURES.update(CODES)
+
+
+_register_codes()

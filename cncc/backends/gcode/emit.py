@@ -136,6 +136,7 @@ class GcodeEmitter:
         self.inc_move = False  # the motion being written was programmed in G91
         self.g91_block = False  # ... and moves an unknown axis: its words are written as increments in G91
         self.g92_force: set[int] = set()  # axes of a G92 preset in the source: written even if unchanged
+        self.probe: tuple[str, int] | None = None  # a G38.x marker: (target code or "", moves of it still to come)
 
     # ---- numbers --------------------------------------------------------------------------
     @property
@@ -240,6 +241,11 @@ class GcodeEmitter:
             self.unknown |= {k for k, h in enumerate(cmd.value) if h}
 
     def _command(self, cmd: Command) -> Iterator[str]:
+        if self.probe is not None and isinstance(cmd, Linear):  # the moves after a G38.x marker
+            return self._probe_move(cmd)
+        return self._one_command(cmd)
+
+    def _one_command(self, cmd: Command) -> Iterator[str]:
         self._note_frame(cmd)
         match cmd:
             case Rapid() | Linear() | Arc():
@@ -305,8 +311,34 @@ class GcodeEmitter:
             self.warn(dg.XL_NO_CODE, f"{name} has no known meaning to carry over to {self.t.name}")
             yield self.block([], f"{name} not translated")
 
+    def _probe_move(self, cmd: Linear) -> Iterator[str]:
+        """The moves after a probe marker: the probe move in the target's probe code (or refused), then
+        the stand-alone interpreter's back-off, which a machine does not make (the position is unknown)."""
+        assert self.probe is not None
+        self._note_frame(cmd)
+        code, left = self.probe
+        self.probe = (code, left - 1) if left > 1 else None
+        if cmd.origin.endswith("back-off"):
+            pass
+        elif code:
+            self._check_increment(cmd)
+            yield from self._sync(cmd.frame, cmd.start, cancel_cycle=True)
+            words = [code, *self._axes(cmd.start, cmd.end, self._released(cmd.frame)), self._feed_word(cmd.feed_mm_min)]
+            yield from self._g91(words)
+        else:
+            self.warn(dg.XL_NO_PROBE, f"{self.t.name} has no probing: the {cmd.origin} probe move is not written",
+                      once=False)
+            yield self.block([], f"{cmd.origin} probe: no {self.t.name} code")
+        if self.probe is None:  # where a probe stops is not known: the next move writes every axis
+            self.unknown |= {0, 1, 2}
+            self.qpos = None
+
     def _set_mode(self, cmd: SetMode) -> Iterator[str]:
-        if cmd.name in ("call_begin", "call_end") and self.opt.keep_subprograms:
+        if cmd.name == "probe":
+            self.probe = (self.t.code(cmd.value[1]), int(cmd.value[-1]))
+        elif cmd.name == "tool_number":  # M61 Q
+            yield self.op_block("set_tool_number", "setting the tool number without a change", [f"Q{cmd.value}"])
+        elif cmd.name in ("call_begin", "call_end") and self.opt.keep_subprograms:
             from cncc.backends.gcode.subprograms import call_marker
 
             yield call_marker(self, cmd)

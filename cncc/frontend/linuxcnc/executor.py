@@ -64,6 +64,8 @@ class LinuxcncExecutor:
         self.line = 0  # the line of the block running (#<_line>)
         self.out: list[Command] = []
         self.stopped = False
+        self.ini_parameters: dict[str, float] = {}  # --ini: #<_ini[section]name> (read-only)
+        self.no_fanuc_subs = False  # --ini: [RS274NGC] DISABLE_FANUC_STYLE_SUB
         self.fast = FAST_MOVES
         self.capture: list[tuple[Span, tuple[Word, ...]]] | None = None  # a G7x profile being read (g7x.py)
 
@@ -75,6 +77,8 @@ class LinuxcncExecutor:
         self.stopped = True
 
     def _system(self, name: str) -> float | None:
+        if name.startswith("_ini["):
+            return self.ini_parameters.get(name)
         it = self.it
         k = it.frame.units.mm_per_unit
         axes = {"_x": 0, "_y": 1, "_z": 2, "_a": 3, "_b": 4, "_c": 5}
@@ -106,6 +110,7 @@ class LinuxcncExecutor:
         steps = 0
         while self.stack and not self.stopped and not self.it.ended:
             fr = self.stack[-1]
+            depth = len(self.stack)
             if fr.pc >= len(fr.index.blocks):
                 self._fell_off(fr)
             else:
@@ -116,6 +121,8 @@ class LinuxcncExecutor:
                               "(an endless loop?)")
                     break
                 self._step(fr)
+            if fr.auto_restore and len(self.stack) < depth and self.stack and not self.stopped and not self.it.ended:
+                self._restore_modal(fr, self.stack[-1].call_span or fr.call_span)
             if self.out:
                 yield from self.out
                 self.out = []
@@ -175,6 +182,10 @@ class LinuxcncExecutor:
         words = self._drop_g80(words)
         sets = [(s.target, self.ev.number(s.expr)) for s in block.statements if isinstance(s, Assign)]
         for target, value in sets:
+            if target.index is None and target.name.startswith("_ini["):
+                self.fail(dg.CONTROLLER_REJECTS, fr.index.span(block), f"Cannot assign to read-only parameter "
+                          f"#<{target.name}>")
+                return
             if target.index is None:
                 self.params.write_name(target.name, value)
             else:
@@ -187,7 +198,16 @@ class LinuxcncExecutor:
             run_g7x(self, fr, block, words, g7x)
             return
         comments = self._messages(fr, block)
+        m7x = [w for w in words if w.letter == "M" and round(w.value) in (70, 71, 72, 73)]
+        if m7x:
+            self._run_words(block, tuple(w for w in words if w not in m7x), comments)
+            self._modal_save(fr, block, round(m7x[0].value))
+            return
         m98 = [w for w in words if w.letter == "M" and round(w.value) in (98, 99)]
+        if m98 and self.no_fanuc_subs:
+            self.fail(dg.CONTROLLER_REJECTS, fr.index.span(block), "DISABLE_FANUC_STYLE_SUB set in INI file, but "
+                      f"found m{round(m98[0].value)}")
+            return
         if m98:
             from cncc.frontend.linuxcnc.control import run_m98
 
@@ -206,7 +226,43 @@ class LinuxcncExecutor:
         if not self.reporter.allowed(Span(self.it.source_id, block.start, block.end), words):
             return
         self.out.extend(self.it.execute(nc))
+        self._probe_result()
         self.reporter.after_block(Span(self.it.source_id, block.start, block.end), words, self.out, at, before)
+
+    def _modal_save(self, fr: Frame, block: Block, m: int) -> None:
+        """M70 save, M71 forget, M72 restore, M73 save and restore at the return of this call."""
+        from cncc.frontend.linuxcnc.modal_save import save
+
+        if self.stopped:
+            return
+        if m in (70, 73):
+            fr.modal_saved, fr.auto_restore = save(self.it), m == 73 and fr.caller is not None
+        elif m == 71:
+            fr.modal_saved, fr.auto_restore = None, False
+        elif fr.modal_saved is None:
+            self.fail(dg.CONTROLLER_REJECTS, fr.index.span(block),
+                      "Cannot restore context from invalid stack frame - missing M70/M73?")
+        else:
+            self._restore_modal(fr, fr.index.span(block))
+
+    def _restore_modal(self, fr: Frame, span: Span | None) -> None:
+        from cncc.frontend.linuxcnc.modal_save import restore_blocks
+
+        assert fr.modal_saved is not None
+        start, end = (span.start, span.end) if span is not None else (0, 0)
+        for words in restore_blocks(self.it, fr.modal_saved):
+            if words:
+                ws = tuple(Word(letter, value, True, start, end) for letter, value in words)
+                self._run_words(Block(self.line, start, end, ws), ws, ())
+
+    def _probe_result(self) -> None:
+        """A G38.x probe sets #5061-#5070 (cncc/frontend/rs274_probe.py)."""
+        from cncc.frontend.rs274_probe import take_result
+
+        got = take_result(self.it)
+        if got is not None:
+            for k, v in enumerate(got):
+                self.params.globals_numbered[5061 + k] = v
 
     def _drop_g80(self, words: tuple[Word, ...]) -> tuple[Word, ...]:
         """G80 beside another motion code (``G0 G80 X5``): LinuxCNC ignores the G80."""
@@ -292,4 +348,6 @@ def run_linuxcnc(src: SourceFile, dialect: Dialect, sink: DiagnosticSink, interp
     dirs = tuple(getattr(macro, "include_dirs", ()) or ())
     steps = int(getattr(macro, "max_steps", 5_000_000) or 5_000_000)
     ex = LinuxcncExecutor(dialect, sink, interp, parser, dirs, steps)
+    ex.ini_parameters = dict(getattr(macro, "ini_parameters", {}) or {})
+    ex.no_fanuc_subs = bool(getattr(macro, "ini_no_fanuc_subs", False))
     return ex.run(src)

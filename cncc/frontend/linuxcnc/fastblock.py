@@ -71,7 +71,7 @@ def run_plain(it: Interpreter, block: Block, words: tuple[Word, ...]) -> list[Co
             feed_word = w
         elif letter != "N":
             return None
-    if not axes or motion == "none" or len({a for a, _ in axes}) != len(axes) or not plain_state(it):
+    if not axes or motion not in ("rapid", "linear") or len({a for a, _ in axes}) != len(axes) or not plain_state(it):
         return None
     modal = it.modal
     k = it.frame.units.mm_per_unit

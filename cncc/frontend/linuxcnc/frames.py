@@ -8,9 +8,13 @@ executor (no import circle; tests/test_layers.py).
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 from cncc.frontend.linuxcnc.flow import FlowIndex
 from cncc.source import Span
+
+if TYPE_CHECKING:
+    from cncc.frontend.linuxcnc.modal_save import Saved
 
 
 @dataclass(slots=True)
@@ -26,6 +30,8 @@ class Frame:
     repeats: dict[int, int] = field(default_factory=dict)
     m98_count: int = 0
     m98_start: int = 0
+    modal_saved: Saved | None = None  # M70 / M73 (cncc/frontend/linuxcnc/modal_save.py)
+    auto_restore: bool = False  # M73: restore modal_saved when this call returns
 
 
 __all__ = ["Frame"]

@@ -81,6 +81,9 @@ class MacroOptions:
     call_markers: bool = False
     # the other input files of the run: their O programs can be called (a main and its library)
     run_files: tuple[str, ...] = ()
+    # --ini (LinuxCNC): #<_ini[section]name> values, and DISABLE_FANUC_STYLE_SUB
+    ini_parameters: dict[str, float] = field(default_factory=dict)
+    ini_no_fanuc_subs: bool = False
 
 
 def layout_for(dialect: Dialect) -> VariableLayout:

@@ -1,0 +1,106 @@
+"""LinuxCNC INI files (``--ini FILE``): what LinuxCNC's interpreter reads from one.
+
+The format is LinuxCNC's: ``[SECTION]`` lines, ``NAME = VALUE`` lines, comments from ``#``
+or ``;`` at the start of a line, blank lines; the first of repeated names counts.  Any
+other line is reported (E0984, at its place in the INI file) and skipped; an unreadable
+file is E0983.
+
+:class:`IniSettings` is what cncc uses, as LinuxCNC 2.9's ``rs274`` reads it:
+
+- ``[RS274NGC] SUBROUTINE_PATH``: folders searched for ``o<name> call`` files, ``:``
+  separated, after the ``-I`` folders.  A relative folder is taken from the INI file's
+  folder (LinuxCNC runs from its configuration folder; the stand-alone ``rs274`` takes it
+  from its working folder);
+- every numeric value as the read-only parameter ``#<_ini[section]name>`` (names are
+  case-insensitive; a value that is not a number is not a parameter);
+- ``[RS274NGC] DISABLE_FANUC_STYLE_SUB``: M98/M99 subprograms are errors.
+
+Not read yet: ``CENTER_ARC_RADIUS_TOLERANCE_MM``/``_INCH`` (rs274 2.9 accepts 0.001 to its
+default 0.0283 mm, i.e. only a stricter check, which cncc's arc check does not take below
+its default), ``[TRAJ] SPINDLES`` (more than one spindle for ``$``), ``RETAIN_G43``,
+``OWORD_NARGS``, ``NO_DOWNCASE_OWORD``, ``FEATURES``, ``PARAMETER_FILE``, remaps.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+from dataclasses import dataclass, field
+
+from cncc import diagnostics as dg
+from cncc.diagnostics import DiagnosticSink
+from cncc.source import NO_SPAN, SourceMap, Span
+
+_SECTION = re.compile(r"^\s*\[([^\]]*)\]\s*$")
+_ENTRY = re.compile(r"^\s*([^=\s][^=]*?)\s*=\s*(.*?)\s*$")
+_NUMBER = re.compile(r"^[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$")
+
+
+@dataclass(slots=True)
+class IniSettings:
+    path: str
+    sections: dict[str, dict[str, str]] = field(default_factory=dict)  # upper-case names
+
+    def get(self, section: str, name: str) -> str | None:
+        return self.sections.get(section.upper(), {}).get(name.upper())
+
+    def flag(self, section: str, name: str) -> bool:
+        v = self.get(section, name)
+        if v is None:
+            return False
+        try:
+            return float(v) != 0.0
+        except ValueError:
+            return v.strip().lower() in ("true", "yes", "on")
+
+    def subroutine_dirs(self) -> tuple[str, ...]:
+        raw = self.get("RS274NGC", "SUBROUTINE_PATH") or ""
+        base = os.path.dirname(os.path.abspath(self.path))
+        return tuple(os.path.join(base, os.path.expanduser(d)) for d in raw.split(":") if d.strip())
+
+    def parameters(self) -> dict[str, float]:
+        """``_ini[section]name`` (lower case, as LinuxCNC names parameters) -> value, for numeric values."""
+        out: dict[str, float] = {}
+        for sec, entries in self.sections.items():
+            for name, value in entries.items():
+                if _NUMBER.match(value):
+                    out["".join(f"_ini[{sec}]{name}".split()).lower()] = float(value)
+        return out
+
+    def number(self, section: str, name: str) -> float | None:
+        v = self.get(section, name)
+        return float(v) if v is not None and _NUMBER.match(v) else None
+
+
+def read_ini(path: str, sources: SourceMap, sink: DiagnosticSink) -> IniSettings | None:
+    """The INI file at ``path``, its malformed lines reported; None when it cannot be read."""
+    try:
+        with open(path, "rb") as fh:
+            text = fh.read().decode("utf-8", errors="replace")
+    except OSError as exc:
+        sink.emit(dg.INI_UNREADABLE, NO_SPAN, f"--ini {path}: cannot read it: {exc.strerror or exc}")
+        return None
+    src = sources.add(path, text)
+    ini = IniSettings(path)
+    section: dict[str, str] | None = None
+    pos = 0
+    for line in text.splitlines(keepends=True):
+        start, body = pos, line.rstrip("\r\n")
+        pos += len(line)
+        stripped = body.strip()
+        if not stripped or stripped[0] in "#;":
+            continue
+        m = _SECTION.match(body)
+        if m is not None:
+            section = ini.sections.setdefault(m.group(1).strip().upper(), {})
+            continue
+        e = _ENTRY.match(body)
+        lead = len(body) - len(body.lstrip())
+        at = Span(src.source_id, start + lead, start + len(body))
+        if e is None:
+            sink.emit(dg.INI_BAD_LINE, at, "not a [SECTION] line, a NAME = VALUE line or a comment; skipped")
+        elif section is None:
+            sink.emit(dg.INI_BAD_LINE, at, f"{e.group(1)} = ... before the first [SECTION]; the line is skipped")
+        else:
+            section.setdefault(e.group(1).upper(), e.group(2))
+    return ini
