@@ -18,7 +18,6 @@ import math
 from typing import TYPE_CHECKING
 
 from cncc import diagnostics as dg
-from cncc.frontend.linuxcnc.builder import oword_of
 from cncc.frontend.linuxcnc.g7x_path import Path
 from cncc.frontend.linuxcnc.g7x_segments import ProfileError, Round, Segment, Straight, corner
 from cncc.frontend.syntax import Block, Word
@@ -184,16 +183,18 @@ def _collect(ex: LinuxcncExecutor, fr: Frame, span: Span, label: str, start: com
     ex.stack.append(type(fr)(index, found[0] + 1, label, fr.pc, fr, span))  # executor.Frame: no import circle
     taken: list[tuple[Span, tuple[Word, ...]]] = []
     ex.capture = taken
+    steps = 0
     try:
         while len(ex.stack) > depth and not ex.stopped:
             top = ex.stack[-1]
             if top.pc >= len(top.index.blocks):
                 ex._fell_off(top)
                 continue
-            b = top.index.blocks[top.pc]
-            if oword_of(b.statements) is None and not b.words and not b.statements:
-                top.pc += 1
-                continue
+            steps += 1
+            if steps > ex.max_steps:  # an endless loop in the profile subroutine
+                ex.fail(dg.MACRO_STEP_BUDGET, span, f"the profile o{label} stopped after {ex.max_steps} blocks "
+                        "(an endless loop?)")
+                break
             ex._step(top)
     finally:
         ex.capture = None
