@@ -28,7 +28,19 @@ if TYPE_CHECKING:
     from cncc.frontend.linuxcnc.executor import Frame, LinuxcncExecutor
 
 CYCLE_CODES = frozenset({700, 710, 711, 712, 720, 721, 722})  # G code tenths
-_CYCLE_ONLY = frozenset("QDEIJKRPLUWAC")  # words of the cycle, not of its rapid to X/Z
+_CYCLE_ONLY = frozenset("QDEIJKRPLUWH")  # words of the cycle, not of its rapid to X/Z
+# rs274's check_items texts for a word the G7x block does not use (G70 reads D E P Q, G71/G72 D I Q R)
+_NO_USE = {
+    "E": "E word with no G70, G76, M66, M67 or M68 to use it",
+    "I": "I word with no G2, G3, G5, G5.1, G10, G33.1, G76, or G87 to use it",
+    "J": "J word with no G2, G3, G5, G5.1, G10, G76 or G87 to use it",
+    "K": "K word with no G2, G3, G33, G33.1, G76, or G87 to use it",
+    "H": "H word with no G43 or G76 to use it",
+    "L": "L word with no G10, cutter compensation, canned cycle, digital/analog input, M98 or NURBS code",
+    "P": "P word with no G2 G3 G4 G10 G64 G5 G5.2 G76 G82 G86 G88 G89 or M50 M51 M52 M53 M62 M63 M64 M65 M66 M98 "
+         "or user M code to use it",
+    "R": "R word with no g code that uses it",
+}
 EQUAL = 1e-4  # rs274's TOLERANCE_EQUAL: an arc to where the tool is is not written
 
 
@@ -38,6 +50,15 @@ def cycle_word(words: tuple[Word, ...]) -> Word | None:
 
 def _value(words: tuple[Word, ...], letter: str) -> float | None:
     return next((w.value for w in words if w.letter == letter), None)
+
+
+def _unused_word(words: tuple[Word, ...], cycle: int) -> tuple[Word, str] | None:
+    """The first word the cycle does not read, with rs274's text (blocks with other codes that read it aside)."""
+    if any(w.letter == "G" and round(w.value * 10) in (40, 100, 430, 640) for w in words) or any(
+            w.letter == "M" for w in words):
+        return None
+    uses = "DEPQ" if cycle == 70 else "DIQR"
+    return next(((w, _NO_USE[w.letter]) for w in words if w.letter in _NO_USE and w.letter not in uses), None)
 
 
 def _program_units(mm: float, k: float) -> float:
@@ -61,6 +82,10 @@ def run_g7x(ex: LinuxcncExecutor, fr: Frame, block: Block, words: tuple[Word, ..
     if axis_uw is not None:  # rs274 (and a lathe configuration) has no U/W axes; the profile may use U/W
         ex.fail(dg.SYNTAX, Span(span.source_id, axis_uw.start, axis_uw.end),
                 f"Bad character '{axis_uw.letter.lower()}' used")
+        return
+    unused = _unused_word(words, cycle)
+    if unused is not None:
+        ex.fail(dg.LATHE_CYCLE_WORDS, Span(span.source_id, unused[0].start, unused[0].end), unused[1])
         return
     q = _value(words, "Q")
     if q is None:
