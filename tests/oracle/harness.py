@@ -86,10 +86,12 @@ def run_rs274(text: str, tool_table: str = "", *, exe: Path | None = None) -> Ru
         prog.write_text(text)
         tbl = Path(tmp) / "tool.tbl"
         tbl.write_text(tool_table)
+        # rs274 keeps its tool data in $HOME/.tool.mmap, shared by every rs274 running at once: a run of its own
+        env = {**os.environ, "HOME": tmp}
         for _ in range(3):  # rs274 now and then exits non-zero without a message: run it again
             try:
                 p = subprocess.run([str(exe), "-t", str(tbl), "-g", str(prog)], capture_output=True, text=True,
-                                   timeout=WALL_TIMEOUT_S, cwd=tmp, preexec_fn=_limit_cpu)
+                                   timeout=WALL_TIMEOUT_S, cwd=tmp, preexec_fn=_limit_cpu, env=env)
             except subprocess.TimeoutExpired as exc:  # no verdict from rs274
                 out = exc.stdout.decode(errors="replace") if isinstance(exc.stdout, bytes) else (exc.stdout or "")
                 return Run(False, parse_trace(out), TIMED_OUT)
