@@ -262,6 +262,11 @@ OUTPUT_IS_INPUT = _define("E0906", E, "the output file would overwrite an input 
 SETTING_ORIGIN = _define("N0907", N, "-v: where a setting came from (command line, modeline, cncc.toml, default)")
 BAD_PROJECT_CONFIG = _define("E0908", E, "a cncc.toml project file is malformed")
 NUMPY_WARNING = _define("W0909", W, "a numerical warning (overflow, invalid value) raised while computing")
+BAD_PASS_SPEC = _define("E0991", E, "-p, --print-after: an unknown pass, an unknown option or a bad value")
+IR_INVARIANT = _define("E0992", E, "--verify-each: a pass broke an IR invariant (continuity, spans, machine frame)")
+
+# dialect data (E0940-E0944)
+UNKNOWN_FRONT_END = _define("E0940", E, "the dialect file names a front end that is not registered")
 
 # --- E0995-E0999: program libraries (cncc batch) ---------------------------------
 BATCH_NO_PROGRAMS = _define("E0995", E, "batch: no program file matches the given folders and patterns")

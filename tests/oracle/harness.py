@@ -89,7 +89,7 @@ def run_rs274(text: str, tool_table: str = "", *, exe: Path | None = None) -> Ru
         tbl.write_text(tool_table)
         # rs274 keeps its tool data in $HOME/.tool.mmap, shared by every rs274 running at once: a run of its own
         env = {**os.environ, "HOME": tmp}
-        for _ in range(3):  # rs274 now and then exits non-zero without a message: run it again
+        for _ in range(8):  # rs274 now and then exits non-zero without a message: run it again
             try:
                 p = subprocess.run([str(exe), "-t", str(tbl), "-g", str(prog)], capture_output=True, text=True,
                                    timeout=WALL_TIMEOUT_S, cwd=tmp, preexec_fn=_limit_cpu, env=env)
@@ -99,9 +99,16 @@ def run_rs274(text: str, tool_table: str = "", *, exe: Path | None = None) -> Ru
             if p.returncode in (-signal.SIGXCPU, -signal.SIGKILL):  # an endless loop of rs274 (its G71 bug)
                 return Run(False, parse_trace(p.stdout), TIMED_OUT)
             err_lines = [ln for ln in p.stderr.splitlines() if ln.strip() and ln.strip() != "executing"]
-            if p.returncode == 0 or err_lines:
+            if p.returncode == 0 or (err_lines and not _table_race(err_lines[0], tool_table)):
                 break
     return Run(p.returncode == 0, parse_trace(p.stdout), err_lines[0] if err_lines else "")
+
+
+def _table_race(error: str, tool_table: str) -> bool:
+    """ "Requested tool 1 not found in the tool table" for a tool the table has: what parallel rs274 runs
+    sharing $HOME/.tool.mmap gave (each run now has its own HOME); kept as a second guard: run it again."""
+    m = re.match(r"Requested tool (\d+) not found in the tool table", error)
+    return m is not None and re.search(rf"^\s*T{m.group(1)}\b", tool_table, re.MULTILINE) is not None
 
 
 def tool_table_mm(table: str) -> str:

@@ -11,7 +11,6 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
-from weakref import WeakKeyDictionary
 
 from cncc.dialects import CodeDef
 from cncc.frontend import ops
@@ -29,14 +28,10 @@ class LatheState:
     diameter: bool = False
 
 
-_STATES: WeakKeyDictionary[Interpreter, LatheState] = WeakKeyDictionary()
-
-
 def _state(it: Interpreter) -> LatheState:
-    st = _STATES.get(it)
-    if st is None:
-        st = _STATES[it] = LatheState()
-    return st
+    """The interpreter's lathe record (a layer record: cncc/frontend/run_state.py)."""
+    st = it.extras.get(LatheState)
+    return st if st is not None else it.extras.attach(LatheState())
 
 
 def diameter_mode(it: Interpreter) -> bool:
