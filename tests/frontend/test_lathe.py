@@ -104,6 +104,20 @@ def test_g7x_bad_input_is_a_positioned_error(text: str, code: str, line: int) ->
     assert text[:d.span.start].count("\n") + 1 == line
 
 
+def test_g72_offset_folding_back_is_refused() -> None:
+    # rs274 2.9 reads before the start of its segment list here (docs/dialects-notes.md); cncc refuses.
+    text = "G21 G18 F100\n" + PROFILE.replace("X4 Z-5", "X4 Z-5\nG2 X6 Z-8 R4") + "G0 X12 Z3\nG72 Q100 I1 D5\nM2\n"
+    r = compile_text(text, dialect="linuxcnc", emit="canon")
+    assert "E0480" in codes(r)
+
+
+def test_g7x_word_it_does_not_read() -> None:
+    # rs274's check_items: G70 reads D E P Q, G71/G72 D I Q R.
+    for cycle, word in (("G70", "I1"), ("G71", "E1"), ("G71", "P2"), ("G72", "K1")):
+        r = compile_text("G21 G18 F100\n" + PROFILE + f"G0 X10 Z2\n{cycle} Q100 {word}\nM2\n", dialect="linuxcnc")
+        assert "E0481" in codes(r), (cycle, word)
+
+
 def test_g71_endless_loop_of_linuxcnc_2_9_stops() -> None:
     # rs274 2.9.0 never finishes this program (tests/oracle/test_lathe_hang.py); cncc stops with E0480.
     text = ("G21 G18 F100\no100 sub\nG1 X0 Z0\nG1 X1\nG3 X3 Z-2 R2\no100 endsub\nG0 X4 Z1\nG71 Q100 D1 I0.5\nM2\n")

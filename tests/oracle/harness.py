@@ -3,7 +3,7 @@
 :func:`rs274_path` finds the wrapper installed by ``scripts/ensure-rs274.sh`` (or ``$CNCC_RS274``).
 :func:`compare` runs both on the same text and reports the first disagreement:
 
-- traces: the calls in :data:`COMPARED` (motion, offsets, rotation, tool, feed, plane, units,
+- traces: the calls in :data:`COMPARED` (motion, offsets, rotation, tool, feed, plane, units, spindle sync,
   dwell), in order, numbers equal within :data:`TOLERANCE`;
 - errors: when rs274 stops with an error, cncc must fail too; when rs274's message is one of
   :data:`MESSAGES`, cncc must report that diagnostic code.  When rs274 stops, only the calls
@@ -33,6 +33,7 @@ COMPARED = frozenset({
     "SET_G5X_OFFSET", "SET_G92_OFFSET", "SET_XY_ROTATION", "USE_TOOL_LENGTH_OFFSET",
     "CHANGE_TOOL", "CHANGE_TOOL_NUMBER", "SELECT_TOOL", "SET_FEED_RATE", "SELECT_PLANE", "USE_LENGTH_UNITS", "DWELL",
     "SET_FEED_MODE", "PROGRAM_END",
+    "START_SPEED_FEED_SYNC", "STOP_SPEED_FEED_SYNCH", "DISABLE_FEED_OVERRIDE", "ENABLE_FEED_OVERRIDE",  # G33, G76
 })
 
 # rs274's error message (first line after "executing") -> the diagnostic code cncc reports.

@@ -1,3 +1,6 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
+# Derived from LinuxCNC's src/emc/rs274ngc/interp_g7x.cc (LinuxCNC 2.9; GPL-2.0-or-later, the LinuxCNC
+# authors).  This file is under that licence, not cncc's MIT licence: see docs/decisions.md (2026-12-02).
 """The profile geometry of LinuxCNC's lathe cycles G70 (finish), G71/G72 (rough).
 
 A port of LinuxCNC 2.9's ``interp_g7x.cc`` (its ``segment``/``g7x`` classes), so that the

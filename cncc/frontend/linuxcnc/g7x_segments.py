@@ -1,3 +1,6 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
+# Derived from LinuxCNC's src/emc/rs274ngc/interp_g7x.cc (LinuxCNC 2.9; GPL-2.0-or-later, the LinuxCNC
+# authors).  This file is under that licence, not cncc's MIT licence: see docs/decisions.md (2026-12-02).
 """The profile segments of LinuxCNC's lathe cycles (a port of LinuxCNC 2.9's ``interp_g7x.cc``).
 
 Points are complex numbers ``z + x*1j`` in program units.  A :class:`Segment` is a
