@@ -296,7 +296,7 @@ def path_passes(cmds: Iterable[Command], dialect: Dialect, machine: MachineModel
     if opts.emit == "gcode" and not opts.expand:  # translation: keep the cycles the target runs alike
         cmds, keep, transforms = translation_prepare(cmds, dialect, opts, sink)
     passes = [ExpandCycles(keep=keep), *frame_passes(dialect, machine_coords=opts.emit in MACHINE_EMITS,
-                                                     keep_transforms=transforms),
+                                                     keep_transforms=transforms, keep_work=opts.emit == "canon"),
               ArcCheck(abs_tol_mm=max(tol_abs, ArcCheck.abs_tol_mm), rel_tol=tol_rel, repair=opts.repair_arcs)]
     return run_pipeline(passes, cmds, ctx)
 
@@ -339,13 +339,15 @@ def translation_prepare(cmds: Iterable[Command], dialect: Dialect, opts: Options
     return prepare(cmds, tgt, expand, sink, kept), kept_cycle_kinds(tgt), kept
 
 
-def frame_passes(dialect: Dialect, machine_coords: bool, keep_transforms: frozenset[Any] = frozenset()) -> list[Any]:
+def frame_passes(dialect: Dialect, machine_coords: bool, keep_transforms: frozenset[Any] = frozenset(),
+                 keep_work: bool = False) -> list[Any]:
     """Polar, scaling, mirror, rotation (program coordinates); then, for the planner's backends,
     offsets and tool length (machine coordinates); then cutter compensation.
 
     The canon trace and G-code keep program coordinates: they report offsets and tool length
     themselves, so ``machine_coords`` is False for them.  ``keep_transforms``: G68, G51.1 and
-    G51 records a G-code target runs itself (left in the frames).
+    G51 records a G-code target runs itself (left in the frames); ``keep_work``: work-system
+    rotations (LinuxCNC G10 L2 R) stay too (the canon trace has program coordinates).
     """
     from cncc.passes.cutter_comp import CutterComp
     from cncc.passes.mirror import MirrorPass
@@ -356,7 +358,7 @@ def frame_passes(dialect: Dialect, machine_coords: bool, keep_transforms: frozen
     from cncc.passes.tool_length import ToolLength
 
     out: list[Any] = [PolarPass(), ScalingPass(keep=keep_transforms), MirrorPass(keep=keep_transforms),
-                      RotationPass(keep=keep_transforms)]
+                      RotationPass(keep=keep_transforms, keep_work=keep_work)]
     if machine_coords:
         out += [ToMachine(), ToolLength()]
     out.append(CutterComp(outer_corner=str(dialect.option("comp_outer_corner", "intersection")),

@@ -77,9 +77,12 @@ def run_rs274(text: str, tool_table: str = "", *, exe: Path | None = None) -> Ru
         prog.write_text(text)
         tbl = Path(tmp) / "tool.tbl"
         tbl.write_text(tool_table)
+        # rs274 2.9 keeps the loaded tool table in $HOME/.tool.mmap: a private HOME per run, or
+        # concurrent runs read each other's tables ("Requested tool 1 not found in the tool table").
+        env = {**os.environ, "HOME": tmp}
         for _ in range(3):  # rs274 now and then exits non-zero without a message: run it again
             p = subprocess.run([str(exe), "-t", str(tbl), "-g", str(prog)], capture_output=True, text=True,
-                               timeout=30, cwd=tmp)
+                               timeout=30, cwd=tmp, env=env)
             err_lines = [ln for ln in p.stderr.splitlines() if ln.strip() and ln.strip() != "executing"]
             if p.returncode == 0 or err_lines:
                 break

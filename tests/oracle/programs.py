@@ -153,17 +153,9 @@ def work_offsets(rng: random.Random) -> Program:
 
 
 def rotation(rng: random.Random) -> Program:
-    u, k = _units(rng)
-    out = [f"{u} G90"]
-    for _ in range(rng.randint(1, 4)):
-        p = rng.choice([0, 1, 1, 2])
-        axes = " ".join(f"{ax}{num(rng.uniform(-30, 30) * k)}" for ax in rng.sample("XYZ", rng.randint(0, 2)))
-        out.append(f"G10 L2 P{p} {axes} R{num(rng.uniform(-180, 180))}".replace("  ", " "))
-        out.append(rng.choice(["G54", "G55", "G54"]))
-        out += _moves(rng, k, rng.randint(1, 3))
-        if rng.random() < 0.3:
-            out.append(f"G53 G0 X{num(rng.uniform(-20, 20) * k)}")
-    return Program(_end(out, rng))
+    from tests.oracle.gen_rotation import rotation as generated
+
+    return generated(rng)
 
 
 def g92_offsets(rng: random.Random) -> Program:
