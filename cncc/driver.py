@@ -361,6 +361,11 @@ def frame_passes(dialect: Dialect, machine_coords: bool, keep_transforms: frozen
                       RotationPass(keep=keep_transforms, keep_work=keep_work)]
     if machine_coords:
         out += [ToMachine(), ToolLength()]
+    if dialect.option("comp_algorithm", "") == "rs274":  # LinuxCNC: the interpreter's own construction
+        from cncc.passes.comp_rs274 import CutterCompRs274
+
+        out.append(CutterCompRs274())
+        return out
     out.append(CutterComp(outer_corner=str(dialect.option("comp_outer_corner", "intersection")),
                           outer_arc_below_deg=float(dialect.option("comp_outer_arc_below_deg", 0.0)),
                           lookahead=int(dialect.option("comp_lookahead", 2)),

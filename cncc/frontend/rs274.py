@@ -160,11 +160,11 @@ def _g41_1(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     from cncc.ir import CompSide
 
     dw = ctx.words.get("D")
-    if dw is None or dw.value < 0:
-        it.emit_error(dg.TRANSFORM_WORDS, ctx.span, f"{c.name} needs the tool diameter D (not negative)")
+    if dw is None:
+        it.emit_error(dg.TRANSFORM_WORDS, ctx.span, f"{c.name} needs the tool diameter D")
         return
-    side = CompSide.LEFT if c.op == "comp_left_dynamic" else CompSide.RIGHT
-    radius = it.reader.length_mm(dw) / 2.0
+    side = CompSide.LEFT if (c.op == "comp_left_dynamic") == (dw.value >= 0) else CompSide.RIGHT  # D < 0 swaps
+    radius = abs(it.reader.length_mm(dw)) / 2.0
     f = it.frame
     if (side, radius) != (f.comp_side, f.comp_radius_mm):
         it.set_frame(replace(f, comp_side=side, comp_radius_mm=radius, comp_index=0))

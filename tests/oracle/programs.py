@@ -221,30 +221,9 @@ def cycles(rng: random.Random) -> Program:
 
 # ---- cutter compensation ----------------------------------------------------------------------
 def cutter_comp(rng: random.Random) -> Program:
-    u, k = _units(rng)
-    tool = rng.randint(1, 3)
-    out = [f"{u} G90 G17 F{num(300 * k)}", f"T{tool} M6 G43", f"G0 X{num(-40 * k)} Y{num(-40 * k)} Z{num(5 * k)}",
-           f"G1 Z{num(-1 * k)}"]
-    side = rng.choice(["G41", "G42"])
-    kind = rng.random()
-    if kind < 0.3:
-        out.append(f"{side}.1 D{num(rng.uniform(1, 8) * k)} G1 X{num(-20 * k)} Y{num(-20 * k)}")
-    elif kind < 0.5:
-        out.append(f"{side} G1 X{num(-20 * k)} Y{num(-20 * k)}")
-    else:
-        out.append(f"{side} D{tool} G1 X{num(-20 * k)} Y{num(-20 * k)}")
-    w, h = rng.uniform(15, 40) * k, rng.uniform(15, 40) * k
-    x0, y0 = -20 * k, -20 * k
-    corners = [(x0 + w, y0), (x0 + w, y0 + h), (x0, y0 + h), (x0, y0)]
-    for cx, cy in corners:
-        if rng.random() < 0.3:
-            r = rng.uniform(0.5, 1.0) * min(w, h) / 2
-            out.append(f"{'G3' if side == 'G41' else 'G2'} X{num(cx)} Y{num(cy)} R{num(max(r, math.hypot(w, h)))}")
-        else:
-            out.append(f"G1 X{num(cx)} Y{num(cy)}")
-    out.append(f"G40 G1 X{num(-40 * k)} Y{num(-40 * k)}")
-    out.append(f"G0 Z{num(5 * k)}")
-    return Program(_end(out, rng), TOOLS)
+    from tests.oracle.gen_comp import cutter_comp as generated
+
+    return generated(rng)
 
 
 # ---- O-words and expressions ------------------------------------------------------------------
