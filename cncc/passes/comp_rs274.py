@@ -52,6 +52,7 @@ class _Queued:
     turn: int = 0  # arcs: signed like Arc.turns
     direction: Pt = (0.0, 0.0)  # lines: the programmed direction (reversal check)
     sweep: float = 0.0  # arcs: the sweep when queued
+    checked: bool = True  # lines: checked for reversal (rs274 never reverses an entry move)
 
 
 def _turn_angle(p0: Pt, c: Pt, turn: int, p1: Pt) -> float:
@@ -93,8 +94,30 @@ def _circle_circle(c1: Pt, r1: float, c2: Pt, r2: float) -> list[Pt]:
     return [(mx - dy * h / d, my + dx * h / d), (mx + dy * h / d, my - dx * h / d)]
 
 
-def _nearest(points: list[Pt], target: Pt) -> Pt | None:
-    return min(points, key=lambda q: math.dist(q, target)) if points else None
+def _behind(points: list[Pt], q: _Queued, plane: tuple[int, int]) -> Pt | None:
+    """The meeting point the queued element reaches first when it backs up from its end
+    (an inside corner shortens the element before it; it never runs past its end)."""
+    if not points:
+        return None
+    i, j = plane
+    end = (q.end[i], q.end[j])
+    if q.center is None:
+        d = q.direction
+        n = math.hypot(*d) or 1.0
+
+        def back(p: Pt) -> float:
+            t = ((end[0] - p[0]) * d[0] + (end[1] - p[1]) * d[1]) / n
+            return t if t >= -1e-9 else math.inf
+
+        best = min(points, key=back)
+        return best if back(best) < math.inf else None
+    c, sign = q.center, (1.0 if q.turn > 0 else -1.0)
+    a_end = math.atan2(end[1] - c[1], end[0] - c[0])
+    return min(points, key=lambda p: (sign * (a_end - math.atan2(p[1] - c[1], p[0] - c[0]))) % (2 * math.pi))
+
+
+def _plane(c: Motion) -> tuple[int, int]:
+    return c.frame.plane.first, c.frame.plane.second
 
 
 @register
@@ -232,7 +255,7 @@ class _State:
                 sweep = _turn_angle(self._xy(c, q.start), q.center, q.turn, xy)
                 if abs(sweep) > abs(q.sweep) + 0.01:
                     self._fail(c, "Arc move in concave corner cannot be reached by the tool without gouging")
-            elif self.endpoint is not None and (q.direction[0] * (xy[0] - self.endpoint[0])
+            elif q.checked and self.endpoint is not None and (q.direction[0] * (xy[0] - self.endpoint[0])
                                                 + q.direction[1] * (xy[1] - self.endpoint[1])) < 0:
                 kind = "traverse" if isinstance(q.cmd, Rapid) else "feed"
                 self._fail(c, f"Straight {kind} in concave corner cannot be reached by the tool without gouging")
@@ -268,7 +291,8 @@ class _State:
         end = (px + r * math.cos(alpha), py + r * math.sin(alpha))  # square to the entry move
         yield from self.flush()
         self.endpoint = (cx, cy)
-        self._enqueue(_Queued(c, here, self._at(c, w_end, end), direction=(end[0] - cx, end[1] - cy)))
+        self._enqueue(_Queued(c, here, self._at(c, w_end, end), direction=(px - cx, py - cy),
+                             checked=False))
         self.first = False
         self.prog = (px, py)
 
@@ -340,7 +364,7 @@ class _State:
             else:
                 rad = math.hypot(front.end[c.frame.plane.first] - front.center[0],
                                  front.end[c.frame.plane.second] - front.center[1])
-                x = _nearest(_line_circle(mid, (px - opx, py - opy), front.center, rad), (opx, opy))
+                x = _behind(_line_circle(mid, (px - opx, py - opy), front.center, rad), front, _plane(c))
                 if x is None:
                     self._fail(c, "Arc to straight motion makes a corner the compensated tool can't fit in "
                                   "without gouging")
@@ -403,7 +427,7 @@ class _State:
                 rad = math.hypot(front.end[i] - front.center[0], front.end[j] - front.center[1])
                 pts = _circle_circle(front.center, rad, center, offset_radius)
                 what = "Arc to arc"
-            x = _nearest(pts, (opx, opy))
+            x = _behind(pts, front, _plane(c)) if front is not None else None
             if x is None:
                 self._fail(c, f"{what} motion makes a corner the compensated tool can't fit in without gouging")
                 return
