@@ -116,6 +116,14 @@ def _behind(points: list[Pt], q: _Queued, plane: tuple[int, int]) -> Pt | None:
     return min(points, key=lambda p: (sign * (a_end - math.atan2(p[1] - c[1], p[0] - c[0]))) % (2 * math.pi))
 
 
+def _direction(q: _Queued, plane: tuple[int, int]) -> Pt:
+    """The direction of a queued line as it is cut (its programmed one for an entry move)."""
+    if not q.checked:
+        return q.direction
+    i, j = plane
+    return q.end[i] - q.start[i], q.end[j] - q.start[j]
+
+
 def _plane(c: Motion) -> tuple[int, int]:
     return c.frame.plane.first, c.frame.plane.second
 
@@ -154,6 +162,12 @@ class _State:
     def feed(self, c: Command) -> Iterator[Command]:
         if not isinstance(c, Rapid | Linear | Arc):
             if isinstance(c, SetMode | Stop) and (isinstance(c, Stop) or c.name == "cutter_comp"):
+                if self.queue and self.cur is not None:  # G40: rs274 checks the queue where the tool is
+                    last = self.queue[-1].cmd
+                    try:
+                        yield from self._move_endpoint_and_flush(last, self._xy(last, self.cur))
+                    except _Stop:
+                        pass
                 yield from self.flush()
                 if isinstance(c, SetMode) and c.frame.comp_side is not CompSide.OFF and not self.on:
                     self.first = True
@@ -290,7 +304,7 @@ class _State:
         alpha = math.atan2(py - cy, px - cx) + (HALF_PI if left else -HALF_PI)
         end = (px + r * math.cos(alpha), py + r * math.sin(alpha))  # square to the entry move
         yield from self.flush()
-        self.endpoint = (cx, cy)
+        self.endpoint = None  # rs274 checks queued lines against the start set at an outside corner only
         self._enqueue(_Queued(c, here, self._at(c, w_end, end), direction=(px - cx, py - cy),
                              checked=False))
         self.first = False
@@ -320,7 +334,7 @@ class _State:
         c_len = b_len / math.cos(a_ang)
         new_center = (ex + c_len * math.cos(ab), ey + c_len * math.sin(ab))
         yield from self.flush()
-        self.endpoint = (cx, cy)
+        self.endpoint = None
         turn = c.turns
         self._enqueue(_Queued(c, here, self._at(c, w_end, (ex, ey)), new_center, turn,
                               sweep=_turn_angle((cx, cy), new_center, turn, (ex, ey))))
@@ -371,6 +385,7 @@ class _State:
                     return
                 start = x
             yield from self._move_endpoint_and_flush(c, start)
+            self.endpoint = (cx, cy) if front is None or front.center is None else start  # as rs274 2.9
         elif beta > SMALL:  # outside corner: an arc about the programmed corner
             yield from self._move_endpoint_and_flush(c, (cx, cy))
             turn = -1 if left else 1
@@ -378,10 +393,10 @@ class _State:
             self._enqueue(_Queued(c, here, corner, (opx, opy), turn,
                                   sweep=_turn_angle((cx, cy), (opx, opy), turn, mid)))
             yield from self.flush()
-            start = mid
+            start = self.endpoint = mid
         else:
             yield from self.flush()
-        self.endpoint = start
+            self.endpoint = (cx, cy)  # rs274: the tool's point before an inside or tangent corner
         s = self._at(c, self._here(c), start)
         self._enqueue(_Queued(c, s, self._at(c, w_end, end), direction=(px - opx, py - opy)))
         self.prog = (px, py)
@@ -414,12 +429,13 @@ class _State:
             gamma = math.atan2(ey - center[1], ex - center[0])
             delta += math.pi
         new_end = (ex + r * math.cos(gamma), ey + r * math.sin(gamma))
-        offset_radius = arc_radius - r if inside else arc_radius + r
+        start_radius = math.hypot(center[0] - opx, center[1] - opy)
+        offset_radius = start_radius - r if inside else start_radius + r  # inside corners meet it from the start
         front = self.queue[0] if self.queue else None
         start: Pt = (cx, cy)
         if beta < -SMALL or beta > math.pi + SMALL or (abs(beta - math.pi) < SMALL and not inside):
             if front is None or front.center is None:
-                d = (math.cos(theta), math.sin(theta)) if front is None else front.direction
+                d = (math.cos(theta), math.sin(theta)) if front is None else _direction(front, _plane(c))
                 pts = _line_circle((cx, cy), d, center, offset_radius)
                 what = "Straight to arc"
             else:
@@ -433,6 +449,7 @@ class _State:
                 return
             start = x
             yield from self._move_endpoint_and_flush(c, start)
+            self.endpoint = (cx, cy)
         elif beta > SMALL:  # outside corner: an arc about the programmed corner
             mid = (opx + r * math.cos(delta), opy + r * math.sin(delta))
             yield from self._move_endpoint_and_flush(c, (cx, cy))
@@ -440,10 +457,10 @@ class _State:
             self._enqueue(_Queued(c, here, self._at(c, here, mid), (opx, opy), turn,
                                   sweep=_turn_angle((cx, cy), (opx, opy), turn, mid)))
             yield from self.flush()
-            start = mid
+            start = self.endpoint = mid
         else:
             yield from self.flush()
-        self.endpoint = start
+            self.endpoint = (cx, cy)  # rs274: the tool's point before an inside or tangent corner
         s = self._at(c, self._here(c), start)
         self._enqueue(_Queued(c, s, self._at(c, w_end, new_end), center, c.turns,
                               sweep=_turn_angle(start, center, c.turns, new_end)))
