@@ -27,6 +27,7 @@ plane after it) wait until the next move in the plane settles their corner.
 
 from __future__ import annotations
 
+import contextlib
 import math
 from collections.abc import Iterable, Iterator
 from dataclasses import dataclass, field, replace
@@ -164,10 +165,8 @@ class _State:
             if isinstance(c, SetMode | Stop) and (isinstance(c, Stop) or c.name == "cutter_comp"):
                 if self.queue and self.cur is not None:  # G40: rs274 checks the queue where the tool is
                     last = self.queue[-1].cmd
-                    try:
+                    with contextlib.suppress(_Stop):
                         yield from self._move_endpoint_and_flush(last, self._xy(last, self.cur))
-                    except _Stop:
-                        pass
                 yield from self.flush()
                 if isinstance(c, SetMode) and c.frame.comp_side is not CompSide.OFF and not self.on:
                     self.first = True
