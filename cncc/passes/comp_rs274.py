@@ -117,14 +117,6 @@ def _behind(points: list[Pt], q: _Queued, plane: tuple[int, int]) -> Pt | None:
     return min(points, key=lambda p: (sign * (a_end - math.atan2(p[1] - c[1], p[0] - c[0]))) % (2 * math.pi))
 
 
-def _direction(q: _Queued, plane: tuple[int, int]) -> Pt:
-    """The direction of a queued line as it is cut (its programmed one for an entry move)."""
-    if not q.checked:
-        return q.direction
-    i, j = plane
-    return q.end[i] - q.start[i], q.end[j] - q.start[j]
-
-
 def _plane(c: Motion) -> tuple[int, int]:
     return c.frame.plane.first, c.frame.plane.second
 
@@ -434,13 +426,14 @@ class _State:
         start: Pt = (cx, cy)
         if beta < -SMALL or beta > math.pi + SMALL or (abs(beta - math.pi) < SMALL and not inside):
             if front is None or front.center is None:
-                d = (math.cos(theta), math.sin(theta)) if front is None else _direction(front, _plane(c))
+                d = (math.cos(theta), math.sin(theta)) if front is None else front.direction
                 pts = _line_circle((cx, cy), d, center, offset_radius)
                 what = "Straight to arc"
             else:
                 i, j = c.frame.plane.first, c.frame.plane.second
                 rad = math.hypot(front.end[i] - front.center[0], front.end[j] - front.center[1])
-                pts = _circle_circle(front.center, rad, center, offset_radius)
+                # arc to arc: rs274 meets the new arc's offset circle by its end radius (a line: by its start)
+                pts = _circle_circle(front.center, rad, center, arc_radius - r if inside else arc_radius + r)
                 what = "Arc to arc"
             x = _behind(pts, front, _plane(c)) if front is not None else None
             if x is None:
