@@ -173,7 +173,8 @@ class _State:
                 self.on = False
                 self.arc_not_allowed = True
             if isinstance(c, Arc) and self.arc_not_allowed:
-                self._error(c, "The move just after exiting cutter compensation mode must be straight, not an arc")
+                self._error(c, "The move just after exiting cutter compensation mode must be straight, not an arc",
+                            dg.COMP_ON_ARC)
             if not isinstance(c, Arc):
                 self.arc_not_allowed = False
             yield from self._plain(c)
@@ -205,11 +206,11 @@ class _State:
             self.frames[id(f)] = got
         return got
 
-    def _error(self, c: Motion, text: str) -> None:
-        self.ctx.sink.emit(dg.CONTROLLER_REJECTS, c.span, text)
+    def _error(self, c: Motion, text: str, code: str = dg.CONTROLLER_REJECTS) -> None:
+        self.ctx.sink.emit(code, c.span, text)
 
-    def _fail(self, c: Motion, text: str) -> None:
-        self._error(c, text)
+    def _fail(self, c: Motion, text: str, code: str = dg.CONTROLLER_REJECTS) -> None:
+        self._error(c, text, code)
         raise _Stop
 
     def _here(self, c: Motion) -> Vec6:
@@ -263,7 +264,8 @@ class _State:
             elif q.checked and self.endpoint is not None and (q.direction[0] * (xy[0] - self.endpoint[0])
                                                 + q.direction[1] * (xy[1] - self.endpoint[1])) < 0:
                 kind = "traverse" if isinstance(q.cmd, Rapid) else "feed"
-                self._fail(c, f"Straight {kind} in concave corner cannot be reached by the tool without gouging")
+                self._fail(c, f"Straight {kind} in concave corner cannot be reached by the tool without gouging",
+                           dg.COMP_GOUGE)
             q.end = self._at(c, q.end, xy)
             if q.center is None and q is not self.queue[0]:
                 q.start = self._at(c, q.start, xy)
@@ -310,7 +312,7 @@ class _State:
             self._fail(c, "Radius of cutter compensation entry arc is not greater than the tool radius")
         inside = left == ccw
         if inside and math.hypot(center[0] - ex, center[1] - ey) <= r:
-            self._fail(c, "Tool radius not less than arc radius with cutter radius compensation")
+            self._fail(c, "Tool radius not less than arc radius with comp", dg.COMP_ARC_TOO_SMALL)
         if inside:
             gamma = math.atan2(center[1] - ey, center[0] - ex)
         else:
@@ -321,7 +323,7 @@ class _State:
         ab = math.atan2(center[1] - ey, center[0] - ex)
         a_ang = math.atan2(cy - ey, cx - ex) - ab
         if abs(math.cos(a_ang)) < 1e-4:
-            self._fail(c, "Tool radius not less than arc radius with cutter radius compensation")
+            self._fail(c, "Tool radius not less than arc radius with comp", dg.COMP_ARC_TOO_SMALL)
         c_len = b_len / math.cos(a_ang)
         new_center = (ex + c_len * math.cos(ab), ey + c_len * math.sin(ab))
         yield from self.flush()
@@ -372,7 +374,7 @@ class _State:
                 x = _behind(_line_circle(mid, (px - opx, py - opy), front.center, rad), front, _plane(c))
                 if x is None:
                     self._fail(c, "Arc to straight motion makes a corner the compensated tool can't fit in "
-                                  "without gouging")
+                                  "without gouging", dg.COMP_NO_INTERSECTION)
                     return
                 start = x
             yield from self._move_endpoint_and_flush(c, start)
@@ -415,7 +417,7 @@ class _State:
         if inside:
             gamma = math.atan2(center[1] - ey, center[0] - ex)
             if arc_radius <= r:
-                self._fail(c, "Tool radius not less than arc radius with cutter radius compensation")
+                self._fail(c, "Tool radius not less than arc radius with comp", dg.COMP_ARC_TOO_SMALL)
         else:
             gamma = math.atan2(ey - center[1], ex - center[0])
             delta += math.pi
