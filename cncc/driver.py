@@ -289,15 +289,13 @@ def path_passes(cmds: Iterable[Command], dialect: Dialect, machine: MachineModel
     from cncc.passes.expand_cycles import ExpandCycles
 
     ctx = PassContext(sink=controller_sink(sink, dialect.raw.get("errors")), dialect=dialect, machine=machine)
-    tol_abs = float(dialect.option("arc_radius_tolerance_mm", ArcCheck.abs_tol_mm))
-    tol_rel = float(dialect.option("arc_radius_tolerance_rel", ArcCheck.rel_tol))
     keep: frozenset[str] = frozenset()
     transforms: frozenset[Any] = frozenset()
     if opts.emit == "gcode" and not opts.expand:  # translation: keep the cycles the target runs alike
         cmds, keep, transforms = translation_prepare(cmds, dialect, opts, sink)
     passes = [ExpandCycles(keep=keep), *frame_passes(dialect, machine_coords=opts.emit in MACHINE_EMITS,
                                                      keep_transforms=transforms, keep_work=opts.emit == "canon"),
-              ArcCheck(abs_tol_mm=max(tol_abs, ArcCheck.abs_tol_mm), rel_tol=tol_rel, repair=opts.repair_arcs)]
+              ArcCheck.for_dialect(dialect, repair=opts.repair_arcs)]
     return run_pipeline(passes, cmds, ctx)
 
 

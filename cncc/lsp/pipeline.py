@@ -141,9 +141,7 @@ def light_passes(cmds: Iterable[Command], dialect: Dialect, machine: MachineMode
     from cncc.passes.expand_cycles import ExpandCycles
 
     ctx = PassContext(sink=sink, dialect=dialect, machine=machine)
-    tol_abs = float(dialect.option("arc_radius_tolerance_mm", ArcCheck.abs_tol_mm))
-    tol_rel = float(dialect.option("arc_radius_tolerance_rel", ArcCheck.rel_tol))
-    arc_check = ArcCheck(abs_tol_mm=max(tol_abs, ArcCheck.abs_tol_mm), rel_tol=tol_rel, repair=opts.repair_arcs)
+    arc_check = ArcCheck.for_dialect(dialect, repair=opts.repair_arcs)
     expanded = run_pipeline([ExpandCycles()], cmds, ctx)
     return arc_check.run(_relink(expanded, memory), ctx)
 

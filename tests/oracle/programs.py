@@ -130,6 +130,12 @@ def arcs_r(rng: random.Random) -> Program:
     return Program(_end(out, rng))
 
 
+def arc_tolerance(rng: random.Random) -> Program:
+    from tests.oracle.gen_arc_tolerance import arc_tolerance as generated
+
+    return generated(rng)
+
+
 # ---- offsets ----------------------------------------------------------------------------------
 _SYSTEMS = ["G54", "G55", "G56", "G57", "G58", "G59", "G59.1", "G59.2", "G59.3"]
 
@@ -327,6 +333,7 @@ FEATURES: dict[str, Callable[[random.Random], Program]] = {
     "work_offsets": work_offsets, "rotation": rotation, "g92_g52": g92_offsets, "tool_length": tool_length,
     "cycles": cycles, "cutter_comp": cutter_comp, "owords": owords, "path_feed": path_feed, "syntax": syntax,
 }
+FEATURES["arc_tolerance"] = arc_tolerance
 
 
 def generate(feature: str, count: int, seed: int = 0) -> list[Program]:
