@@ -336,6 +336,15 @@ FEATURES: dict[str, Callable[[random.Random], Program]] = {
 FEATURES["arc_tolerance"] = arc_tolerance
 
 
+def semantics(rng: random.Random) -> Program:
+    from tests.oracle.gen_semantics import semantics as generated
+
+    return generated(rng)
+
+
+FEATURES["semantics"] = semantics
+
+
 def generate(feature: str, count: int, seed: int = 0) -> list[Program]:
     """``count`` programs of ``feature``, the same ones for the same seed."""
     gen = FEATURES[feature]
