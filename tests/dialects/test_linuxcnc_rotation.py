@@ -44,6 +44,16 @@ def test_translation_writes_the_rotated_points(target: str) -> None:
     assert "N0801" in {d.code for d in r.sink}  # the note that cncc applied the rotation
 
 
+def test_expanded_program_has_the_rotated_points() -> None:
+    r = compile_text(ROTATED, dialect="linuxcnc", emit="gcode", expand=True)
+    assert r.ok
+    words = _axis_words(r.output)
+    end = _turn(10, 10, 30)
+    assert words[1]["X"] == pytest.approx(end[0], abs=1e-3) and words[1]["Y"] == pytest.approx(end[1], abs=1e-3)
+    assert set(words[2]) == {"Z"}
+    assert not re.search(r"G10 L2 [^\n]*R", r.output)  # the rotation is in the points, not written again
+
+
 def test_canon_trace_keeps_program_coordinates() -> None:
     lines, r = canon(ROTATED, dialect="linuxcnc")
     assert r.ok
