@@ -236,7 +236,8 @@ def _stored(it: Interpreter, which: int) -> Vec6:
 
 @handler("home_stored", "home_stored2")
 def _g28(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
-    from cncc.frontend.linuxcnc.rotation import home_position
+    from cncc.frontend.linuxcnc.placement import home_position
+    from cncc.frontend.rs274_g10 import rotation_deg
 
     ctx.axis_used = True
     which = 1 if c.op == "home_stored" else 2
@@ -246,7 +247,7 @@ def _g28(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
         mid = target(it, ctx) if named else it.pos
         ctx.out.append(Rapid(ctx.span, it.frame, it.pos, mid, it.modal.path, origin=c.name))
         it.pos = mid
-    home = home_position(it, _stored(it, which))
+    home = home_position(it.frame, rotation_deg(it, it.frame.work_index), _stored(it, which))
     if only_named and named:  # LinuxCNC: only the named axes go home
         home = _vec([home[i] if i in named else it.pos[i] for i in range(6)])
     end = home

@@ -115,9 +115,10 @@ def _rotated_l20(it: Interpreter, ctx: BlockContext, index: int, old: Vec6, vals
     """G10 L20 X Y when the active system or system ``index`` is rotated (LinuxCNC): the current
     point gets the named coordinates in system ``index``'s rotated terms and keeps its coordinates
     there for an unnamed X or Y: ``offset = R(active) p + g5x - R(index) q``."""
-    from cncc.frontend.linuxcnc.rotation import Placement
+    from cncc.frontend.linuxcnc.placement import Placement
 
-    here = replace(Placement.of(it), g92=(0.0, 0.0))  # G92 stays out of it (rs274 2.9)
+    # G92 stays out of it (rs274 2.9)
+    here = replace(Placement.of_frame(it.frame, rotation_deg(it, it.frame.work_index)), g92=(0.0, 0.0))
     theta = rotation_deg(it, index)
     if not (here.theta_deg or theta) or not ("X" in ctx.words or "Y" in ctx.words):
         return

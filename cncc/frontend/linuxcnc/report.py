@@ -23,7 +23,8 @@ from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING
 
 from cncc import diagnostics as dg
-from cncc.frontend.linuxcnc.rotation import Placement, reexpress, rotate_frames, rotation_in_use
+from cncc.frontend.linuxcnc.placement import Placement
+from cncc.frontend.linuxcnc.rotation import reexpress, rotate_frames, rotation_in_use
 from cncc.frontend.syntax import Word
 from cncc.ir import (
     Command,

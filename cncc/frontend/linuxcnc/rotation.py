@@ -16,10 +16,10 @@ pass (docs/dialects-notes.md).
 
 from __future__ import annotations
 
-import math
-from dataclasses import dataclass, replace
+from dataclasses import replace
 from typing import TYPE_CHECKING
 
+from cncc.frontend.linuxcnc.placement import Placement
 from cncc.frontend.syntax import Word
 from cncc.ir import Command, Frame, Linear, Plane, Rapid, Vec6
 from cncc.ir.frame import Rotation
@@ -28,35 +28,11 @@ if TYPE_CHECKING:
     from cncc.frontend.interp import Interpreter
 
 
-@dataclass(frozen=True, slots=True)
-class Placement:
-    """Where rs274's interpreter places program XY for G53, G28/G30 and G10 L20:
-    ``R(theta) (p + g92) + g5x``."""
+def placement(it: Interpreter) -> Placement:
+    """The active work system's placement of program XY."""
+    from cncc.frontend.rs274_g10 import rotation_deg
 
-    g5x: tuple[float, float]
-    g92: tuple[float, float]
-    theta_deg: float
-
-    @staticmethod
-    def of(it: Interpreter) -> Placement:
-        from cncc.frontend.rs274_g10 import rotation_deg
-
-        return Placement.of_frame(it.frame, rotation_deg(it, it.frame.work_index))
-
-    @staticmethod
-    def of_frame(f: Frame, theta_deg: float) -> Placement:
-        g5x = (f.work_offset_mm[0] + f.local_offset_mm[0], f.work_offset_mm[1] + f.local_offset_mm[1])
-        return Placement(g5x, (f.g92_offset_mm[0], f.g92_offset_mm[1]), theta_deg)
-
-    def machine(self, x: float, y: float) -> tuple[float, float]:
-        c, s = math.cos(math.radians(self.theta_deg)), math.sin(math.radians(self.theta_deg))
-        u, v = x + self.g92[0], y + self.g92[1]
-        return c * u - s * v + self.g5x[0], s * u + c * v + self.g5x[1]
-
-    def program(self, mx: float, my: float) -> tuple[float, float]:
-        c, s = math.cos(math.radians(self.theta_deg)), math.sin(math.radians(self.theta_deg))
-        u, v = mx - self.g5x[0], my - self.g5x[1]
-        return c * u + s * v - self.g92[0], -s * u + c * v - self.g92[1]
+    return Placement.of_frame(it.frame, rotation_deg(it, it.frame.work_index))
 
 
 def rotation_in_use(it: Interpreter) -> bool:
@@ -73,7 +49,7 @@ def _with_xy(p: Vec6, xy: tuple[float, float]) -> Vec6:
 def reexpress(it: Interpreter, before: Placement, start: Vec6, words: tuple[Word, ...], out: list[Command],
               at: int, *, select: bool = False) -> None:
     """Correct the program position (and G53 move ends) of one executed block for the rotation."""
-    after = Placement.of(it)
+    after = placement(it)
     if before.theta_deg == 0.0 and after.theta_deg == 0.0:
         return
     moves = [k for k in range(at, len(out)) if isinstance(out[k], Rapid | Linear)]
@@ -96,17 +72,6 @@ def reexpress(it: Interpreter, before: Placement, start: Vec6, words: tuple[Word
     if not select:  # G10 L2/L20 of the active system: rs274 2.9 leaves G92 out (a select does not)
         before, after = replace(before, g92=(0.0, 0.0)), replace(after, g92=(0.0, 0.0))
     it.pos = _with_xy(it.pos, after.program(*before.machine(start[0], start[1])))
-
-
-def home_position(it: Interpreter, machine: Vec6) -> Vec6:
-    """The program coordinates of a machine position (G28/G30's home) under the active rotation."""
-    f = it.frame
-    off = f.total_offset_mm
-    p = [machine[i] - off[i] - (f.tool_length_mm if i == 2 else 0.0) for i in range(6)]
-    place = Placement.of(it)
-    if place.theta_deg:
-        p[0], p[1] = place.program(machine[0], machine[1])
-    return (p[0], p[1], p[2], p[3], p[4], p[5])
 
 
 def work_rotation(theta_deg: float, f: Frame) -> Rotation | None:
