@@ -316,7 +316,8 @@ def pipeline_config(opts: Options, keep: frozenset[str] = frozenset(),
     from cncc.pipeline import PipelineConfig
 
     return PipelineConfig(machine_coords=opts.emit in MACHINE_EMITS, repair_arcs=opts.repair_arcs,
-                          keep_cycles=keep, keep_transforms=transforms, spec=opts.passes)
+                          keep_cycles=keep, keep_transforms=transforms, keep_work=opts.emit == "canon",
+                          spec=opts.passes)
 
 
 def path_passes(cmds: Iterable[Command], dialect: Dialect, machine: MachineModel, opts: Options,

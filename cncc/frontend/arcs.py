@@ -33,7 +33,7 @@ def center_from_radius(start: Vec6, end: Vec6, plane: Plane, radius: float, cloc
     half = chord / 2.0
     err = ""
     if half > r:
-        if half - r > tolerance:
+        if half - r > tolerance + 1e-9:  # at the limit itself (inch words made mm) the arc is fine
             err = "small"
         h = 0.0
     else:

@@ -136,11 +136,11 @@ def _g41_1(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     from cncc.ir import CompSide
 
     dw = ctx.words.get("D")
-    if dw is None or dw.value < 0:
-        it.emit_error(dg.TRANSFORM_WORDS, ctx.span, f"{c.name} needs the tool diameter D (not negative)")
+    if dw is None:
+        it.emit_error(dg.TRANSFORM_WORDS, ctx.span, f"{c.name} needs the tool diameter D")
         return
-    side = CompSide.LEFT if c.op == "comp_left_dynamic" else CompSide.RIGHT
-    radius = it.reader.length_mm(dw) / 2.0
+    side = CompSide.LEFT if (c.op == "comp_left_dynamic") == (dw.value >= 0) else CompSide.RIGHT  # D < 0 swaps
+    radius = abs(it.reader.length_mm(dw)) / 2.0
     f = it.frame
     if (side, radius) != (f.comp_side, f.comp_radius_mm):
         it.set_frame(replace(f, comp_side=side, comp_radius_mm=radius, comp_index=0))
@@ -212,15 +212,21 @@ def _stored(it: Interpreter, which: int) -> Vec6:
 
 @handler("home_stored", "home_stored2")
 def _g28(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
+    from cncc.frontend.linuxcnc.placement import home_position
+    from cncc.frontend.rs274_g10 import rotation_deg
+
     ctx.axis_used = True
     which = 1 if c.op == "home_stored" else 2
-    if any(k in ctx.words for k in AXES):
-        mid = target(it, ctx)
+    named = [i for i, k in enumerate(AXES) if k in ctx.words]
+    only_named = bool(it.dialect.option("home_named_axes_only", False))
+    if named or only_named:  # LinuxCNC makes the intermediate move even to where the tool is
+        mid = target(it, ctx) if named else it.pos
         ctx.out.append(Rapid(ctx.span, it.frame, it.pos, mid, it.modal.path, origin=c.name))
         it.pos = mid
-    ref, off = _stored(it, which), it.frame.total_offset_mm
-    tool = it.frame.tool_length_mm
-    end = _vec([ref[i] - off[i] - (tool if i == 2 else 0.0) for i in range(6)])
+    home = home_position(it.frame, rotation_deg(it, it.frame.work_index), _stored(it, which))
+    if only_named and named:  # LinuxCNC: only the named axes go home
+        home = _vec([home[i] if i in named else it.pos[i] for i in range(6)])
+    end = home
     ctx.out.append(Rapid(ctx.span, it.frame, it.pos, end, it.modal.path, origin=f"{c.name} ref"))
     it.pos = end
 

@@ -54,6 +54,9 @@ def run_g10(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     if p < 0 or p > systems or p != pw.value:
         _fail(it, ctx, "g10_p_range", f"P value out of range with G10 L{table}")
         return
+    if table == 20 and "R" in ctx.words and it.dialect.option("g10_l20_rejects_r", False):
+        _fail(it, ctx, "g10_l20_r", "R not allowed in G10 L20")
+        return
     _work_entry(it, ctx, table, p or it.frame.work_index)
 
 
@@ -91,6 +94,8 @@ def _work_entry(it: Interpreter, ctx: BlockContext, table: int, index: int) -> N
         else:  # L20: the current position gets the value v
             machine = f.total_offset_mm[k] + it.pos[k]
             vals[k] = machine - f.local_offset_mm[k] - f.g92_offset_mm[k] - v
+    if table == 20:
+        _rotated_l20(it, ctx, index, old, vals)
     new: Vec6 = (vals[0], vals[1], vals[2], vals[3], vals[4], vals[5])
     it.options.work_offsets_mm[index] = new
     ctx.out.append(SetMode(ctx.span, it.frame, "work_table", (index, old, new)))  # translation writes it (G10)
@@ -106,9 +111,31 @@ def _work_entry(it: Interpreter, ctx: BlockContext, table: int, index: int) -> N
         ctx.out.append(SetMode(ctx.span, it.frame, "xy_rotation", rotation_deg(it, index)))
 
 
+def _rotated_l20(it: Interpreter, ctx: BlockContext, index: int, old: Vec6, vals: list[float]) -> None:
+    """G10 L20 X Y when the active system or system ``index`` is rotated (LinuxCNC): the current
+    point gets the named coordinates in system ``index``'s rotated terms and keeps its coordinates
+    there for an unnamed X or Y: ``offset = R(active) p + g5x - R(index) q``."""
+    from cncc.frontend.linuxcnc.placement import Placement
+
+    # G92 stays out of it (rs274 2.9)
+    here = replace(Placement.of_frame(it.frame, rotation_deg(it, it.frame.work_index)), g92=(0.0, 0.0))
+    theta = rotation_deg(it, index)
+    if not (here.theta_deg or theta) or not ("X" in ctx.words or "Y" in ctx.words):
+        return
+    f = it.frame
+    mx, my = here.machine(it.pos[0], it.pos[1])
+    system = Placement((old[0] + f.local_offset_mm[0], old[1] + f.local_offset_mm[1]), (0.0, 0.0), theta)
+    q = list(system.program(mx, my))
+    for k, letter in enumerate("XY"):
+        w = ctx.words.get(letter)
+        if w is not None:
+            q[k] = it.reader.axis_value(w)
+    ox, oy = Placement((0.0, 0.0), (0.0, 0.0), theta).machine(q[0], q[1])
+    vals[0], vals[1] = mx - ox - f.local_offset_mm[0], my - oy - f.local_offset_mm[1]
+
+
 def rotation_deg(it: Interpreter, index: int) -> float:
-    """The XY rotation of work system ``index`` (G10 L2 R; the trace reports it, cncc does not
-    rotate the moves yet: docs/dialects-notes.md)."""
+    """The XY rotation of work system ``index`` (G10 L2 R: frames carry it, :mod:`cncc.frontend.linuxcnc.rotation`)."""
     from cncc.frontend.rs274_state import state
 
     return state(it).rotation_deg.get(index, 0.0)

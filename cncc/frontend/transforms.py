@@ -228,7 +228,7 @@ def _arc_in_block(it: Interpreter, ctx: BlockContext) -> bool:
 
 @handler("comp_left", "comp_right", "comp_off")
 def _comp(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
-    if _arc_in_block(it, ctx):
+    if _arc_in_block(it, ctx) and not (c.op != "comp_off" and it.dialect.option("comp_in_arc_block", False)):
         it.emit_error(dg.COMP_ON_ARC, ctx.span, f"{c.name} cannot be in a G02/G03 block; start and cancel "
                                                  "compensation with G00 or G01")
     st = _state(it)

@@ -13,6 +13,7 @@ All lengths are millimetres and all angles degrees, whatever the program's units
 from __future__ import annotations
 
 import enum
+import math
 from dataclasses import dataclass, field
 
 AXES: tuple[str, ...] = ("X", "Y", "Z", "A", "B", "C")
@@ -74,11 +75,17 @@ class Mirror:
 
 @dataclass(frozen=True, slots=True)
 class Rotation:
-    """Rotation in the active plane about ``center_mm`` (plane coordinates)."""
+    """Rotation in the active plane about ``center_mm`` (plane coordinates).
+
+    ``work``: the work system's own rotation (LinuxCNC G10 L2 R, centre ``-g92``: the machine
+    point is ``R (p + g92) + g5x``): positions are the program's, the canon trace keeps them,
+    and :func:`add_offsets` includes it.
+    """
 
     plane: Plane
     center_mm: tuple[float, float]
     angle_deg: float
+    work: bool = False
 
 
 @dataclass(frozen=True, slots=True)
@@ -153,12 +160,29 @@ ALL_HELD: tuple[bool, bool, bool, bool, bool, bool] = (True, True, True, True, T
 
 
 def add_offsets(p: Vec6, frame: Frame) -> Vec6:
-    """Program coordinates of ``frame`` -> the same point plus the frame's total offset."""
+    """Program coordinates of ``frame`` -> the same point plus the frame's total offset (turned
+    first by a work-system rotation, :attr:`Rotation.work`)."""
     o = frame.total_offset_mm
+    r = frame.rotation
+    if r is not None and r.work:
+        c = r.center_mm
+        x, y = _turn(p[0] - c[0], p[1] - c[1], r.angle_deg)
+        return (x + c[0] + o[0], y + c[1] + o[1], p[2] + o[2], p[3] + o[3], p[4] + o[4], p[5] + o[5])
     return (p[0] + o[0], p[1] + o[1], p[2] + o[2], p[3] + o[3], p[4] + o[4], p[5] + o[5])
 
 
 def sub_offsets(b: Vec6, frame: Frame) -> Vec6:
     """The inverse of :func:`add_offsets`."""
     o = frame.total_offset_mm
+    r = frame.rotation
+    if r is not None and r.work:
+        c = r.center_mm
+        x, y = _turn(b[0] - o[0] - c[0], b[1] - o[1] - c[1], -r.angle_deg)
+        return (x + c[0], y + c[1], b[2] - o[2], b[3] - o[3], b[4] - o[4], b[5] - o[5])
     return (b[0] - o[0], b[1] - o[1], b[2] - o[2], b[3] - o[3], b[4] - o[4], b[5] - o[5])
+
+
+def _turn(x: float, y: float, angle_deg: float) -> tuple[float, float]:
+    a = math.radians(angle_deg)
+    c, s = math.cos(a), math.sin(a)
+    return c * x - s * y, s * x + c * y

@@ -113,6 +113,10 @@ class AffinePass(Pass):
         """The frame once this pass has applied its transform."""
         raise NotImplementedError
 
+    def bypasses(self, frame: Frame) -> bool:
+        """G53 moves and home legs of this frame are in machine terms (not transformed)."""
+        return True
+
     def run(self, cmds: Iterable[Command], ctx: PassContext) -> Iterator[Command]:
         last: Vec6 | None = None  # actual end of the previous motion, program + offsets
         cache: dict[int, tuple[Frame, Affine | None, Frame]] = {}
@@ -149,7 +153,7 @@ class AffinePass(Pass):
     def _motion(self, c: Rapid | Linear | Arc, aff: Affine | None, nf: Frame, last: Vec6 | None,
                 ctx: PassContext) -> Rapid | Linear | Arc:
         start = c.start if last is None else sub_offsets(last, nf)
-        bypass = aff is None or c.origin == "G53" or c.origin.endswith(" ref")
+        bypass = aff is None or ((c.origin == "G53" or c.origin.endswith(" ref")) and self.bypasses(c.frame))
         if bypass or aff is None:
             if start == c.start and nf is c.frame:
                 return c

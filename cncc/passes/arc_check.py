@@ -2,7 +2,10 @@
 
 The tolerances follow LinuxCNC's rule: the difference between the start and end
 radius may be at most ``abs_tol_mm`` (default 0.01 mm x sqrt(2) x 2) or
-``rel_tol`` (default 0.1 %) of the start radius, whichever is larger.  With
+``rel_tol`` (default 0.1 %) of the start radius, whichever is larger.  LinuxCNC has
+its own absolute tolerance for arcs programmed in inches (``abs_tol_inch_mm``) and
+rejects a difference above ``max_abs_factor`` (100) absolute tolerances whatever the
+radius.  With
 ``repair=True`` the centre is moved onto the perpendicular bisector of the chord,
 keeping the start radius (or the mean radius when the chord is longer), and a
 warning says how far it moved; otherwise the arc is an error.
@@ -16,7 +19,9 @@ from dataclasses import dataclass
 from typing import ClassVar
 
 from cncc import diagnostics as dg
-from cncc.ir import Arc, Command, Vec6
+from cncc.dialects import Dialect
+from cncc.ir import Arc, Command, Units, Vec6
+from cncc.ir.frame import MM_PER_INCH
 from cncc.passes import Pass, PassContext, register
 
 
@@ -29,6 +34,17 @@ class ArcCheck(Pass):
     abs_tol_mm: float = 0.01 * math.sqrt(2.0) * 2.0
     rel_tol: float = 0.001
     repair: bool = False
+    abs_tol_inch_mm: float = 0.0  # > 0: the absolute tolerance of arcs programmed in inches (mm)
+    max_abs_factor: float = 0.0  # > 0: a difference above this many absolute tolerances is an error anyway
+
+    @classmethod
+    def for_dialect(cls, dialect: Dialect, repair: bool = False) -> ArcCheck:
+        """The check with the dialect's tolerances (``arc_radius_tolerance_mm``/``_rel``/``_inch``,
+        ``arc_radius_error_factor``); the absolute one is never below the default."""
+        return cls(abs_tol_mm=max(float(dialect.option("arc_radius_tolerance_mm", cls.abs_tol_mm)), cls.abs_tol_mm),
+                   rel_tol=float(dialect.option("arc_radius_tolerance_rel", cls.rel_tol)), repair=repair,
+                   abs_tol_inch_mm=float(dialect.option("arc_radius_tolerance_inch", 0.0)) * MM_PER_INCH,
+                   max_abs_factor=float(dialect.option("arc_radius_error_factor", 0.0)))
 
     def run(self, cmds: Iterable[Command], ctx: PassContext) -> Iterator[Command]:
         for c in cmds:
@@ -46,7 +62,9 @@ class ArcCheck(Pass):
         r0 = math.hypot(c.start[i] - c.center[i], c.start[j] - c.center[j])
         r1 = math.hypot(c.end[i] - c.center[i], c.end[j] - c.center[j])
         diff = abs(r1 - r0)
-        if diff <= max(self.abs_tol_mm, self.rel_tol * r0):
+        tol = self.abs_tol_inch_mm if self.abs_tol_inch_mm > 0 and c.frame.units is Units.INCH else self.abs_tol_mm
+        capped = self.max_abs_factor > 0 and diff > self.max_abs_factor * tol
+        if diff <= max(tol, self.rel_tol * r0) + 1e-9 and not capped:
             return c
         if not self.repair:
             ctx.sink.emit(dg.ARC_RADIUS, c.span,

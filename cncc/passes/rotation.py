@@ -5,7 +5,10 @@ produces them turned by the record's angle (counter-clockwise positive) about it
 centre in the record's plane, with the record removed.  Arc directions and the
 compensation side are unchanged.  In G91 the increment is turned about the actual
 start point (see :mod:`cncc.passes.affine`).  Records in ``keep`` are left in the
-frames untouched (a G-code target with G68 runs them itself).
+frames untouched (a G-code target with G68 runs them itself), and so are work-system
+rotations (LinuxCNC G10 L2 R, ``Rotation.work``) under ``keep_work`` (the canon trace);
+a work rotation also turns G53 moves and home legs (their program point is the front
+end's).
 """
 
 from __future__ import annotations
@@ -15,6 +18,7 @@ from dataclasses import dataclass, replace
 from typing import ClassVar
 
 from cncc.ir import Frame
+from cncc.ir.frame import Rotation
 from cncc.passes import register
 from cncc.passes.affine import Affine, AffinePass
 
@@ -26,10 +30,18 @@ class RotationPass(AffinePass):
 
     name: ClassVar[str] = "rotation"
     keep: frozenset[object] = frozenset()  # records left in the frames (a G-code target runs them)
+    keep_work: bool = False  # leave work-system rotations (the canon trace has program coordinates)
+
+    def _kept(self, r: Rotation) -> bool:
+        return r in self.keep or (r.work and self.keep_work)
+
+    def bypasses(self, frame: Frame) -> bool:
+        """A work-system rotation turns G53 and home legs too: the front end gave their program point."""
+        return frame.rotation is None or not frame.rotation.work
 
     def affine(self, frame: Frame) -> Affine | None:
         r = frame.rotation
-        if r is None or r in self.keep:
+        if r is None or self._kept(r):
             return None
         i, j = r.plane.first, r.plane.second
         a = math.radians(r.angle_deg)
@@ -42,4 +54,4 @@ class RotationPass(AffinePass):
         return Affine((c[0], c[1], c[2]), rows)
 
     def strip(self, frame: Frame, affine: Affine | None) -> Frame:
-        return frame if frame.rotation is None or frame.rotation in self.keep else replace(frame, rotation=None)
+        return frame if frame.rotation is None or self._kept(frame.rotation) else replace(frame, rotation=None)

@@ -40,6 +40,7 @@ PASS_MODULES: dict[str, str] = {
     "to-machine": "cncc.passes.to_machine",
     "tool-length": "cncc.passes.tool_length",
     "cutter-comp": "cncc.passes.cutter_comp",
+    "cutter-comp-rs274": "cncc.passes.comp_rs274",
     "relink": "cncc.passes.relink",
     "arc-check": "cncc.passes.arc_check",
     "blend": "cncc.passes.blend",
@@ -50,7 +51,8 @@ PASS_MODULES: dict[str, str] = {
 used, so a canon trace does not import the planner's numpy)."""
 
 PLAN_STAGE = ("blend", "plan", "verify")
-FRAME_PASSES = ("polar", "scaling", "mirror", "rotation", "to-machine", "tool-length", "cutter-comp")
+FRAME_PASSES = ("polar", "scaling", "mirror", "rotation", "to-machine", "tool-length", "cutter-comp",
+                "cutter-comp-rs274")
 MACHINE_ONLY = frozenset({"to-machine", "tool-length"})  # frame passes of the machine-coordinate backends
 SET_BY_DRIVER = {("plan", "level"): "-O and --compare choose the level"}
 
@@ -64,6 +66,7 @@ class PipelineConfig:
     repair_arcs: bool = False
     keep_cycles: frozenset[str] = frozenset()  # cycle kinds left whole (CycleKind values)
     keep_transforms: frozenset[Any] = frozenset()  # rotation, mirror and scaling records left in the frames
+    keep_work: bool = False  # work-system rotations (LinuxCNC G10 L2 R) left in the frames (the canon trace)
     spec: str = ""  # -p: the passes by name ("" = the default pipeline)
 
 
@@ -134,23 +137,28 @@ def path_options(config: PipelineConfig, dialect: Dialect) -> dict[str, dict[str
     """Each path pass's options from the configuration and the dialect."""
     from cncc.passes.arc_check import ArcCheck
 
-    tol_abs = float(dialect.option("arc_radius_tolerance_mm", ArcCheck.abs_tol_mm))
-    tol_rel = float(dialect.option("arc_radius_tolerance_rel", ArcCheck.rel_tol))
+    arc = ArcCheck.for_dialect(dialect, repair=config.repair_arcs)
     keep = config.keep_transforms
     return {
         "expand-cycles": {"keep": config.keep_cycles},
-        "scaling": {"keep": keep}, "mirror": {"keep": keep}, "rotation": {"keep": keep},
+        "scaling": {"keep": keep}, "mirror": {"keep": keep},
+        "rotation": {"keep": keep, "keep_work": config.keep_work},
         "cutter-comp": {"outer_corner": str(dialect.option("comp_outer_corner", "intersection")),
                         "outer_arc_below_deg": float(dialect.option("comp_outer_arc_below_deg", 0.0)),
                         "lookahead": int(dialect.option("comp_lookahead", 2)),
                         "startup": str(dialect.option("comp_startup", "type_a"))},
-        "arc-check": {"abs_tol_mm": max(tol_abs, ArcCheck.abs_tol_mm), "rel_tol": tol_rel,
-                      "repair": config.repair_arcs},
+        "arc-check": {"abs_tol_mm": arc.abs_tol_mm, "rel_tol": arc.rel_tol, "repair": arc.repair,
+                      "abs_tol_inch_mm": arc.abs_tol_inch_mm, "max_abs_factor": arc.max_abs_factor},
     }
 
 
-def default_path_names(config: PipelineConfig) -> list[str]:
-    frame = [n for n in FRAME_PASSES if config.machine_coords or n not in MACHINE_ONLY]
+def default_path_names(config: PipelineConfig, dialect: Dialect | None = None) -> list[str]:
+    """The default path stage; the dialect's ``comp_algorithm = "rs274"`` (LinuxCNC) picks
+    ``cutter-comp-rs274`` for ``cutter-comp``."""
+    comp = "cutter-comp-rs274" if dialect is not None and dialect.option("comp_algorithm", "") == "rs274" \
+        else "cutter-comp"
+    frame = [n for n in FRAME_PASSES if (config.machine_coords or n not in MACHINE_ONLY)
+             and (not n.startswith("cutter-comp") or n == comp)]
     return ["expand-cycles", *frame, "arc-check"]
 
 
@@ -158,7 +166,7 @@ def path_passes(config: PipelineConfig, dialect: Dialect) -> list[Pass]:
     """The path stage (the default, or the path-stage passes of ``config.spec``)."""
     defaults = path_options(config, dialect)
     if not config.spec:
-        return [make(n, defaults.get(n, {})) for n in default_path_names(config)]
+        return [make(n, defaults.get(n, {})) for n in default_path_names(config, dialect)]
     return [make(r.name, {**defaults.get(r.name, {}), **_options(r)})
             for r in requests(config.spec) if r.name not in PLAN_STAGE]
 
@@ -166,14 +174,14 @@ def path_passes(config: PipelineConfig, dialect: Dialect) -> list[Pass]:
 def frame_passes(config: PipelineConfig, dialect: Dialect) -> list[Pass]:
     """The frame passes alone (commands already past expand-cycles and arc-check)."""
     defaults = path_options(config, dialect)
-    return [make(n, defaults.get(n, {})) for n in default_path_names(config) if n in FRAME_PASSES]
+    return [make(n, defaults.get(n, {})) for n in default_path_names(config, dialect) if n in FRAME_PASSES]
 
 
 def light_passes(config: PipelineConfig, dialect: Dialect, memory: Any = None) -> list[Pass]:
     """The path stage with ``relink`` (given the language server's ``memory``) in place of the
     frame passes: what they do to commands whose frames transform nothing."""
     defaults = path_options(config, dialect)
-    names = [n for n in default_path_names(config) if n not in FRAME_PASSES]
+    names = [n for n in default_path_names(config, dialect) if n not in FRAME_PASSES]
     out = [make(n, defaults.get(n, {})) for n in names]
     return [out[0], make("relink", {"memory": memory}), *out[1:]]
 

@@ -34,6 +34,14 @@ CASES: dict[str, str | tuple[str, str]] = {
     "g41_loaded_tool": ("G21 F100\nT2 M6\nG0 X-10 Y-10\nG41 G1 X0 Y0\nG1 X10\nG40 G1 X20 Y-10\nM2\n", TOOLS),
     "g10_active_system": "G21\nG10 L2 P1 X0\nG10 L2 P0 Y0\nG10 L20 P2 X0\nG10 L2 P1 X3\nM2\n",
     "rotation_reported": "G21\nG10 L2 P2 R10\nG10 L2 P1 R20\nG55\nG54\nG55\nM2\n",
+    "g28_named_axes_only": "G21\nG0 X5 Y6 Z7\nG28 X1\nG30 Y2 Z3\nG0 X5 Y6 Z7\nG28\nM2\n",
+    "g28_rotated_home": "G21\nG10 L2 P1 X10 Y5 R30\nG0 X3 Y4 Z2\nG28 X1\nG30 Y1 Z1\nG92 X1\nG28\nM2\n",
+    "g10_l20_rotated": ("G21\nG10 L2 P1 X10 Y5 R30\nG0 X3 Y4\nG10 L20 P0 X0\nG10 L2 P2 X1 R45\nG10 L20 P2 Y2\nG55\n"
+                        "G0 Z1\nM2\n"),
+    "g10_l20_with_r": "G21\nG10 L20 P1 X1 R30\nG0 X2\nM2\n",
+    "select_rotated_with_g92": ("G21\nG0 X1 Y2\nG92 X0 Y0\nG10 L2 P0 Y-1.7 R108\nG1 F100 Z0\nG56\nG1 Z1\nG54\nG1 Z2\n"
+                                "M2\n"),
+    "g53_rotated_with_g92": "G21\nG10 L2 P1 X0.2 R139\nG92 X-0.3 Y0.35\nG0 X1 Y1\nG53 G1 F100 Z-0.2 Y0.6\nG0 X2\nM2\n",
     "r_arc_just_short": "G21 F100\nG2 X20 Y0 R9.99875\nM2\n",
     "r_arc_too_short": "G21 F100\nG2 X20 Y0 R9.9985\nM2\n",
     "r_arc_just_short_inch": "G20 F10\nG2 X20 Y0 R9.99996\nM2\n",

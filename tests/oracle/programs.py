@@ -132,6 +132,12 @@ def arcs_r(rng: random.Random) -> Program:
     return Program(_end(out, rng))
 
 
+def arc_tolerance(rng: random.Random) -> Program:
+    from tests.oracle.gen_arc_tolerance import arc_tolerance as generated
+
+    return generated(rng)
+
+
 # ---- offsets ----------------------------------------------------------------------------------
 _SYSTEMS = ["G54", "G55", "G56", "G57", "G58", "G59", "G59.1", "G59.2", "G59.3"]
 
@@ -155,17 +161,9 @@ def work_offsets(rng: random.Random) -> Program:
 
 
 def rotation(rng: random.Random) -> Program:
-    u, k = _units(rng)
-    out = [f"{u} G90"]
-    for _ in range(rng.randint(1, 4)):
-        p = rng.choice([0, 1, 1, 2])
-        axes = " ".join(f"{ax}{num(rng.uniform(-30, 30) * k)}" for ax in rng.sample("XYZ", rng.randint(0, 2)))
-        out.append(f"G10 L2 P{p} {axes} R{num(rng.uniform(-180, 180))}".replace("  ", " "))
-        out.append(rng.choice(["G54", "G55", "G54"]))
-        out += _moves(rng, k, rng.randint(1, 3))
-        if rng.random() < 0.3:
-            out.append(f"G53 G0 X{num(rng.uniform(-20, 20) * k)}")
-    return Program(_end(out, rng))
+    from tests.oracle.gen_rotation import rotation as generated
+
+    return generated(rng)
 
 
 def g92_offsets(rng: random.Random) -> Program:
@@ -231,30 +229,9 @@ def cycles(rng: random.Random) -> Program:
 
 # ---- cutter compensation ----------------------------------------------------------------------
 def cutter_comp(rng: random.Random) -> Program:
-    u, k = _units(rng)
-    tool = rng.randint(1, 3)
-    out = [f"{u} G90 G17 F{num(300 * k)}", f"T{tool} M6 G43", f"G0 X{num(-40 * k)} Y{num(-40 * k)} Z{num(5 * k)}",
-           f"G1 Z{num(-1 * k)}"]
-    side = rng.choice(["G41", "G42"])
-    kind = rng.random()
-    if kind < 0.3:
-        out.append(f"{side}.1 D{num(rng.uniform(1, 8) * k)} G1 X{num(-20 * k)} Y{num(-20 * k)}")
-    elif kind < 0.5:
-        out.append(f"{side} G1 X{num(-20 * k)} Y{num(-20 * k)}")
-    else:
-        out.append(f"{side} D{tool} G1 X{num(-20 * k)} Y{num(-20 * k)}")
-    w, h = rng.uniform(15, 40) * k, rng.uniform(15, 40) * k
-    x0, y0 = -20 * k, -20 * k
-    corners = [(x0 + w, y0), (x0 + w, y0 + h), (x0, y0 + h), (x0, y0)]
-    for cx, cy in corners:
-        if rng.random() < 0.3:
-            r = rng.uniform(0.5, 1.0) * min(w, h) / 2
-            out.append(f"{'G3' if side == 'G41' else 'G2'} X{num(cx)} Y{num(cy)} R{num(max(r, math.hypot(w, h)))}")
-        else:
-            out.append(f"G1 X{num(cx)} Y{num(cy)}")
-    out.append(f"G40 G1 X{num(-40 * k)} Y{num(-40 * k)}")
-    out.append(f"G0 Z{num(5 * k)}")
-    return Program(_end(out, rng), TOOLS)
+    from tests.oracle.gen_comp import cutter_comp as generated
+
+    return generated(rng)
 
 
 # ---- O-words and expressions ------------------------------------------------------------------
@@ -495,6 +472,16 @@ FEATURES: dict[str, Callable[[random.Random], Program]] = {
     "cycles": cycles, "cutter_comp": cutter_comp, "owords": owords, "path_feed": path_feed, "syntax": syntax,
     "lathe_modes": lathe_modes, "lathe_roughing": lathe_roughing, "threading": threading,
 }
+FEATURES["arc_tolerance"] = arc_tolerance
+
+
+def semantics(rng: random.Random) -> Program:
+    from tests.oracle.gen_semantics import semantics as generated
+
+    return generated(rng)
+
+
+FEATURES["semantics"] = semantics
 
 
 def generate(feature: str, count: int, seed: int = 0) -> list[Program]:

@@ -65,13 +65,17 @@ def test_default_stages() -> None:
 
 
 def test_options_come_from_the_dialect() -> None:
-    d = load_dialect("linuxcnc")  # linuxcnc.toml: comp_outer_corner = "arc", comp_startup = "end_normal"
+    d = load_dialect("series8")  # series8.toml: comp_outer_arc_below_deg = 70
     by_name = {p.name: p for p in builder.path_passes(PipelineConfig(repair_arcs=True), d)}
     comp, arc = by_name["cutter-comp"], by_name["arc-check"]
     assert isinstance(comp, CutterComp) and isinstance(arc, ArcCheck)
-    assert (comp.outer_corner, comp.startup) == ("arc", "end_normal")
+    assert comp.outer_arc_below_deg == pytest.approx(70.0)
     assert arc.repair is True
-    assert arc.abs_tol_mm == pytest.approx(0.028284271247461905)
+    lcnc = {p.name: p for p in builder.path_passes(PipelineConfig(), load_dialect("linuxcnc"))}
+    assert "cutter-comp" not in lcnc and "cutter-comp-rs274" in lcnc  # linuxcnc.toml: comp_algorithm = "rs274"
+    arc = lcnc["arc-check"]
+    assert isinstance(arc, ArcCheck) and arc.abs_tol_mm == pytest.approx(0.028284271247461905)
+    assert arc.abs_tol_inch_mm == pytest.approx(0.0028284271247461905 * 25.4) and arc.max_abs_factor == 100
 
 
 def test_a_spec_replaces_the_path_stage_and_keeps_the_defaults_of_unnamed_options() -> None:

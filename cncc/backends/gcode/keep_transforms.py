@@ -126,6 +126,7 @@ def kept_transforms(cmds: Sequence[Command], target: Target, step_mm: StepMm) ->
                           (Scaling, "scale_on", "scale_off")):
         if target.has(on) and target.has(off):
             kept |= _kept(cmds, motions, kind, step_mm, target)
+    kept = {r for r in kept if not (isinstance(r, Rotation) and r.work)}  # G10 L2 R: cncc turns the moves
     for k in range(1, len(motions)):  # an increment mapped by cncc starts where a kept transform left
         f, before = motions[k].frame, motions[k - 1].frame
         if f.incremental and any(r is not None and r not in kept for r in (f.rotation, f.mirror, f.scaling)):

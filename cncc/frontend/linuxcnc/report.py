@@ -23,7 +23,8 @@ from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING
 
 from cncc import diagnostics as dg
-from cncc.frontend.linuxcnc.rotation import Placement, reexpress, rotation_in_use
+from cncc.frontend.linuxcnc.placement import Placement
+from cncc.frontend.linuxcnc.rotation import reexpress, rotate_frames, rotation_in_use
 from cncc.frontend.syntax import Word
 from cncc.ir import (
     Command,
@@ -177,7 +178,9 @@ class Reporter:
             self._after_work_select(out, at)
         self._cycles(out, at)
         if before.theta_deg or rotation_in_use(it):
-            reexpress(it, Placement.of_frame(before.frame, before.theta_deg), before.pos, words, out, at)
+            reexpress(it, Placement.of_frame(before.frame, before.theta_deg), before.pos, words, out, at,
+                      select="work" in ops)
+            rotate_frames(it, out, at)
         self._program_end(out, at)
         self._track_coolant(out[at:])
 

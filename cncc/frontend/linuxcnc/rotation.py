@@ -1,55 +1,38 @@
 """The XY rotation of LinuxCNC's work systems (G10 L2 R) in the program position.
 
-LinuxCNC places a program point on the machine as ``R(theta) (p + g92) + g5x`` in XY (the
-rotation of the active work system about its origin).  rs274's canon calls carry program
-coordinates, so the rotation shows where the interpreter re-expresses the tool's position:
-after a change of the active system's offsets or rotation (``G10 L2 P0 ... R``, a system
-select) the machine position stays and the program position follows, and a ``G53`` move's
-end is a machine position.  cncc's motion passes do not rotate the moves yet
-(docs/dialects-notes.md); this module keeps the program coordinates LinuxCNC's.
+LinuxCNC places a program point on the machine as ``R(theta) (p + g92) + g5x`` in XY
+(:class:`Placement`; the active work system's rotation turns the point after its G92
+offset is added).  rs274's canon calls carry program coordinates, so the rotation shows
+where the interpreter re-expresses the tool's position: a ``G53`` move's end and the home
+leg of ``G28``/``G30`` are machine positions; ``G10 L20`` gives the current point the named
+coordinates in the rotated system; a G92 change keeps ``p + g92``; a system select keeps
+the machine point.  After ``G10 L2/L20`` of the active system rs274 2.9 keeps ``R p + g5x``
+-- it leaves G92 out, so with a G92 offset in force the tool's point moves
+(docs/dialects-notes.md); cncc gives the same program position.  The moves' frames carry the
+rotation as a :class:`~cncc.ir.frame.Rotation` record marked ``work`` (:func:`rotate_frames`):
+the canon trace keeps program coordinates, every other output is rotated by the rotation
+pass (docs/dialects-notes.md).
 """
 
 from __future__ import annotations
 
-import math
-from dataclasses import dataclass, replace
+from dataclasses import replace
 from typing import TYPE_CHECKING
 
+from cncc.frontend.linuxcnc.placement import Placement
 from cncc.frontend.syntax import Word
-from cncc.ir import Command, Frame, Linear, Rapid, Vec6
+from cncc.ir import Command, Frame, Linear, Plane, Rapid, Vec6
+from cncc.ir.frame import Rotation
 
 if TYPE_CHECKING:
     from cncc.frontend.interp import Interpreter
 
 
-@dataclass(frozen=True, slots=True)
-class Placement:
-    """Where program XY lands on the machine: ``R(theta) (p + g92) + g5x``."""
+def placement(it: Interpreter) -> Placement:
+    """The active work system's placement of program XY."""
+    from cncc.frontend.rs274_g10 import rotation_deg
 
-    g5x: tuple[float, float]
-    g92: tuple[float, float]
-    theta_deg: float
-
-    @staticmethod
-    def of(it: Interpreter) -> Placement:
-        from cncc.frontend.rs274_g10 import rotation_deg
-
-        return Placement.of_frame(it.frame, rotation_deg(it, it.frame.work_index))
-
-    @staticmethod
-    def of_frame(f: Frame, theta_deg: float) -> Placement:
-        g5x = (f.work_offset_mm[0] + f.local_offset_mm[0], f.work_offset_mm[1] + f.local_offset_mm[1])
-        return Placement(g5x, (f.g92_offset_mm[0], f.g92_offset_mm[1]), theta_deg)
-
-    def machine(self, x: float, y: float) -> tuple[float, float]:
-        c, s = math.cos(math.radians(self.theta_deg)), math.sin(math.radians(self.theta_deg))
-        u, v = x + self.g92[0], y + self.g92[1]
-        return c * u - s * v + self.g5x[0], s * u + c * v + self.g5x[1]
-
-    def program(self, mx: float, my: float) -> tuple[float, float]:
-        c, s = math.cos(math.radians(self.theta_deg)), math.sin(math.radians(self.theta_deg))
-        u, v = mx - self.g5x[0], my - self.g5x[1]
-        return c * u + s * v - self.g92[0], -s * u + c * v - self.g92[1]
+    return Placement.of_frame(it.frame, rotation_deg(it, it.frame.work_index))
 
 
 def rotation_in_use(it: Interpreter) -> bool:
@@ -64,9 +47,9 @@ def _with_xy(p: Vec6, xy: tuple[float, float]) -> Vec6:
 
 
 def reexpress(it: Interpreter, before: Placement, start: Vec6, words: tuple[Word, ...], out: list[Command],
-              at: int) -> None:
+              at: int, *, select: bool = False) -> None:
     """Correct the program position (and G53 move ends) of one executed block for the rotation."""
-    after = Placement.of(it)
+    after = placement(it)
     if before.theta_deg == 0.0 and after.theta_deg == 0.0:
         return
     moves = [k for k in range(at, len(out)) if isinstance(out[k], Rapid | Linear)]
@@ -84,6 +67,39 @@ def reexpress(it: Interpreter, before: Placement, start: Vec6, words: tuple[Word
                 out[k + 1] = replace(out[k + 1], start=end)  # type: ignore[arg-type]
             it.pos = end
         return
-    if moves or before == after:
-        return
+    if moves or (before.g5x, before.theta_deg) == (after.g5x, after.theta_deg):
+        return  # a G92 change is made in program coordinates: no re-expression
+    if not select:  # G10 L2/L20 of the active system: rs274 2.9 leaves G92 out (a select does not)
+        before, after = replace(before, g92=(0.0, 0.0)), replace(after, g92=(0.0, 0.0))
     it.pos = _with_xy(it.pos, after.program(*before.machine(start[0], start[1])))
+
+
+def work_rotation(theta_deg: float, f: Frame) -> Rotation | None:
+    """The frame record of a work system's XY rotation (None when it has none): about the point
+    ``-g92`` of the program (LinuxCNC adds the G92 offset before it turns the point)."""
+    g92 = f.g92_offset_mm
+    return Rotation(Plane.XY, (-g92[0] + 0.0, -g92[1] + 0.0), theta_deg, work=True) if theta_deg else None
+
+
+def rotate_frames(it: Interpreter, out: list[Command], at: int) -> None:
+    """The frames of one executed block's commands, and the interpreter's, carry the rotation of
+    their work system (the rotation pass turns the moves; the canon trace keeps them)."""
+    from cncc.frontend.rs274_g10 import rotation_deg
+
+    done: dict[int, Frame] = {}
+
+    def framed(f: Frame) -> Frame:
+        got = done.get(id(f))
+        if got is None:
+            want = work_rotation(rotation_deg(it, f.work_index), f)
+            got = f if f.rotation == want or (f.rotation is not None and not f.rotation.work) \
+                else replace(f, rotation=want)
+            done[id(f)] = got
+        return got
+
+    for k in range(at, len(out)):
+        c = out[k]
+        f = framed(c.frame)
+        if f is not c.frame:
+            out[k] = replace(c, frame=f)
+    it.frame = framed(it.frame)
