@@ -5,7 +5,7 @@ from __future__ import annotations
 from collections.abc import Iterable, Iterator
 from dataclasses import fields
 
-from cncc.ir import Command
+from cncc.ir import PROGRAMMED, Command
 from cncc.source import SourceMap
 
 _SKIP = {"span", "frame"}
@@ -33,7 +33,7 @@ def dump_ir(cmds: Iterable[Command], sources: SourceMap) -> Iterator[str]:
             if f.name in _SKIP:
                 continue
             val = getattr(c, f.name)
-            if f.name == "motion" or (f.name == "origin" and not val):
+            if f.name == "motion" or (f.name == "origin" and val == PROGRAMMED):
                 continue
             parts.append(f"{f.name}={_fmt(val)}")
         yield f"{where}: {type(c).__name__}({', '.join(parts)})  ; {text}\n"

@@ -14,19 +14,49 @@ from __future__ import annotations
 
 import enum
 from dataclasses import dataclass, field
-from typing import Any
 
 from cncc.ir.css import Css
 from cncc.ir.frame import Frame, Plane, Vec6
+from cncc.ir.modes import ModeCommand
+from cncc.ir.pathmode import PathMode as PathMode  # re-exported: motions name it
 from cncc.source import Span
 
 
-class PathMode(enum.Enum):
-    """How a motion ends: blend into the next or stop exactly (G61/G09)."""
+class OriginKind(enum.Enum):
+    """Why a move exists, where that changes how passes and backends treat it."""
 
-    CONTINUOUS = "continuous"  # G64: blend within the tolerance
-    EXACT_STOP = "exact-stop"  # G61/G09: decelerate to zero at the end
-    EXACT_PATH = "exact-path"  # G61.1-like: stay on the path, no stop required
+    PROGRAM = "program"  # an ordinary programmed move
+    MACHINE = "machine"  # G53: in machine coordinates, transforms leave it alone
+    CYCLE = "cycle"  # a move of a canned cycle (``code`` the cycle code)
+    CURVE = "curve"  # a piece of a NURBS / spline (G5.x)
+    SYNC = "sync"  # spindle-synchronised (G33, G33.1)
+    HOME = "home"  # a reference-return leg in program terms (G28/G30 to the intermediate point, G29)
+    REFERENCE = "reference"  # the leg to the reference position: no transform applies to it
+    CODE = "code"  # made by a code of its own that is none of these (SERIES 8 G06 oscillation)
+    RETURN_START = "return_start"  # SZGH G26/G261-G265: back to the program's start point
+    RETURN_SAVED = "return_saved"  # SZGH G61x: back to the point saved by G25
+
+
+@dataclass(frozen=True, slots=True)
+class Origin:
+    """The origin of a move: its kind and the code as programmed that made it ("" for ordinary moves)."""
+
+    kind: OriginKind = OriginKind.PROGRAM
+    code: str = ""
+
+    @property
+    def programmed(self) -> bool:
+        """An ordinary programmed move (no code of its own made it)."""
+        return self.kind is OriginKind.PROGRAM
+
+    @property
+    def in_machine_terms(self) -> bool:
+        """G53 and reference legs: in machine terms, no programmable transform applies."""
+        return self.kind is OriginKind.MACHINE or self.kind is OriginKind.REFERENCE
+
+
+PROGRAMMED = Origin()
+MACHINE_ORIGIN = Origin(OriginKind.MACHINE, "G53")
 
 
 @dataclass(frozen=True, slots=True)
@@ -50,7 +80,7 @@ class Rapid:
     start: Vec6
     end: Vec6
     motion: Motion = DEFAULT_MOTION
-    origin: str = ""  # e.g. "G28", "cycle" - why the rapid exists (for reports)
+    origin: Origin = PROGRAMMED  # why the move exists (G53, a reference return, a cycle ...)
 
 
 @dataclass(frozen=True, slots=True)
@@ -61,7 +91,7 @@ class Linear:
     end: Vec6
     feed_mm_min: float  # path feed in mm/min (per-rev feeds resolved by `motion.per_rev`)
     motion: Motion = DEFAULT_MOTION
-    origin: str = ""
+    origin: Origin = PROGRAMMED
 
 
 @dataclass(frozen=True, slots=True)
@@ -82,7 +112,7 @@ class Arc:
     plane: Plane
     feed_mm_min: float
     motion: Motion = DEFAULT_MOTION
-    origin: str = ""
+    origin: Origin = PROGRAMMED
 
 
 @dataclass(frozen=True, slots=True)
@@ -183,19 +213,6 @@ class Message:
     frame: Frame
     text: str
     pause: bool = False
-
-
-@dataclass(frozen=True, slots=True)
-class SetMode:
-    """A modal change with no motion that downstream stages may report (units, plane...).
-
-    ``name`` is a canonical operation name, ``value`` its argument.
-    """
-
-    span: Span
-    frame: Frame
-    name: str
-    value: Any = None
 
 
 @dataclass(frozen=True, slots=True)
@@ -315,7 +332,7 @@ Command = (
     | Stop
     | Comment
     | Message
-    | SetMode
+    | ModeCommand
     | Aux
     | Wait
     | Cycle

@@ -9,8 +9,8 @@ per hole, the moves the controller makes, in the cycle's own frame:
 * the cycle's in-feed, bottom action and retract (table in ``docs/cycles.md``);
 * every move has the exact-stop path mode and ``origin`` set to the cycle code.
 
-Tapping moves are bracketed by ``SetMode("spindle_sync", pitch_mm)`` and
-``SetMode("spindle_sync", 0.0)``: in between, the feed axis follows the spindle
+Tapping moves are bracketed by ``SpindleSync(pitch_mm)`` and
+``SpindleSync(0.0)``: in between, the feed axis follows the spindle
 (feed = rpm x pitch, overrides locked at 100 %).  Spindle reversals, stops, orients
 and restarts are :class:`Spindle` commands; the G88 manual retract is a :class:`Wait`.
 Other zero-length moves are left out (a G99 hole starts at R already).
@@ -30,11 +30,13 @@ from cncc.ir import (
     Dwell,
     Linear,
     Motion,
+    Origin,
+    OriginKind,
     PathMode,
     Rapid,
-    SetMode,
     Spindle,
     SpindleState,
+    SpindleSync,
     Vec6,
     Wait,
 )
@@ -68,7 +70,7 @@ def expand(c: Cycle) -> list[Command]:
         path.frame = c.frame
         over = path.at(path.pos[c.axis])
         if c.zero_moves and over == path.pos:  # rs274 prints the move even when it has no length
-            path.out.append(Rapid(c.span, c.frame, over, over, path.motion, c.code))
+            path.out.append(Rapid(c.span, c.frame, over, over, path.motion, Origin(OriginKind.CYCLE, c.code)))
         else:
             path.position(over)
         path.frame = path.levels_frame
@@ -95,6 +97,7 @@ class _Path:
         self.pos: Vec6 = c.start
         self.hole: Vec6 = c.start
         self.motion: Motion = replace(c.motion, mode=PathMode.EXACT_STOP)
+        self.origin = Origin(OriginKind.CYCLE, c.code)
         running = c.spindle in (SpindleState.CW, SpindleState.CCW)
         default = SpindleState.CCW if c.kind in (CycleKind.TAP_LEFT, CycleKind.TAP_LEFT_RS274) else SpindleState.CW
         self.forward = c.spindle if running else default
@@ -115,7 +118,7 @@ class _Path:
         f = self.frame
         if p == self.pos and f.scaling is None and f.mirror is None and f.rotation is None and not f.after_cancel:
             return
-        self.out.append(Rapid(self.c.span, self.frame, self.pos, p, self.motion, self.c.code))
+        self.out.append(Rapid(self.c.span, self.frame, self.pos, p, self.motion, self.origin))
         self.pos = p
 
     def at(self, level: float, shifted: bool = False) -> Vec6:
@@ -127,13 +130,13 @@ class _Path:
 
     def rapid(self, p: Vec6) -> None:
         if p != self.pos:
-            self.out.append(Rapid(self.c.span, self.frame, self.pos, p, self.motion, self.c.code))
+            self.out.append(Rapid(self.c.span, self.frame, self.pos, p, self.motion, self.origin))
             self.pos = p
 
     def feed(self, p: Vec6) -> None:
         if p != self.pos:
             c = self.c
-            self.out.append(Linear(c.span, self.frame, self.pos, p, c.feed_mm_min, self.motion, c.code))
+            self.out.append(Linear(c.span, self.frame, self.pos, p, c.feed_mm_min, self.motion, self.origin))
             self.pos = p
 
     def lift(self, p: Vec6) -> None:
@@ -153,7 +156,7 @@ class _Path:
         return SpindleState.CCW if self.forward is SpindleState.CW else SpindleState.CW
 
     def sync(self, pitch_mm: float) -> None:
-        self.out.append(SetMode(self.c.span, self.c.frame, "spindle_sync", pitch_mm))
+        self.out.append(SpindleSync(self.c.span, self.c.frame, pitch_mm))
 
     def wait(self, what: str) -> None:
         self.out.append(Wait(self.c.span, self.c.frame, what))

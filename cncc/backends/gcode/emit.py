@@ -42,6 +42,7 @@ from cncc.dialects import Dialect
 from cncc.ir import (
     Arc,
     Aux,
+    CallBoundary,
     Command,
     Comment,
     Coolant,
@@ -49,13 +50,16 @@ from cncc.ir import (
     Cycle,
     Dwell,
     Frame,
+    HoldAxes,
     Linear,
     Message,
+    OriginKind,
     PathMode,
     Plane,
+    PresetG92,
     Rapid,
     SelectTool,
-    SetMode,
+    SetPathMode,
     Spindle,
     SpindleSpeed,
     SpindleState,
@@ -65,6 +69,7 @@ from cncc.ir import (
     Units,
     Vec6,
     Wait,
+    WriteWorkTable,
 )
 from cncc.ir.frame import Mirror, Rotation, Scaling
 from cncc.source import NO_SPAN, Span
@@ -233,10 +238,10 @@ class GcodeEmitter:
         tf = self.tf
         if tf.work_mm is None and cmd.frame.work_index == 1:  # the power-on G54 (before a G55 ... of the program)
             tf.work_mm = tf.work_tables.setdefault(1, cmd.frame.work_offset_mm)
-        if True in cmd.frame.held_axes and not isinstance(cmd, Rapid | Linear | Arc):  # a cancel (SetMode)
+        if True in cmd.frame.held_axes and not isinstance(cmd, Rapid | Linear | Arc):  # a cancel (a mode command)
             self.held = tuple(a or b for a, b in zip(self.held, cmd.frame.held_axes, strict=True))
-        if isinstance(cmd, SetMode) and cmd.name == "held_axes":  # moved outside the program (M06, G28, G53)
-            self.unknown |= {k for k, h in enumerate(cmd.value) if h}
+        if isinstance(cmd, HoldAxes):  # moved outside the program (M06, G28, G53)
+            self.unknown |= {k for k, h in enumerate(cmd.axes) if h}
         match cmd:
             case Rapid() | Linear() | Arc():
                 self._check_increment(cmd)
@@ -273,8 +278,18 @@ class GcodeEmitter:
                 yield self.op_block("program_stop", "a wait", comment=f"wait: {cmd.what}")
             case Aux():
                 yield from self._aux(cmd)
-            case SetMode():
-                yield from self._set_mode(cmd)
+            case CallBoundary() if self.opt.keep_subprograms:
+                from cncc.backends.gcode.subprograms import call_marker
+
+                yield call_marker(self, cmd)
+            case PresetG92():
+                self.g92_force |= set(cmd.axes)
+            case WriteWorkTable():
+                yield from self._work_table(cmd.index, cmd.old_mm, cmd.new_mm)
+            case SetPathMode() if not cmd.for_cycle:
+                op = "exact_stop_mode" if cmd.mode is PathMode.EXACT_STOP else "continuous_mode"
+                if self.t.has(op):
+                    yield self.block([self.t.code(op)])
             case _:
                 pass
 
@@ -294,20 +309,6 @@ class GcodeEmitter:
         else:
             self.warn(dg.XL_NO_CODE, f"{name} has no known meaning to carry over to {self.t.name}")
             yield self.block([], f"{name} not translated")
-
-    def _set_mode(self, cmd: SetMode) -> Iterator[str]:
-        if cmd.name in ("call_begin", "call_end") and self.opt.keep_subprograms:
-            from cncc.backends.gcode.subprograms import call_marker
-
-            yield call_marker(self, cmd)
-        elif cmd.name == "g92_preset":
-            self.g92_force |= set(cmd.value)
-        elif cmd.name == "work_table":
-            yield from self._work_table(*cmd.value)
-        elif cmd.name == "path_mode":
-            op = "exact_stop_mode" if cmd.value is PathMode.EXACT_STOP else "continuous_mode"
-            if self.t.has(op):
-                yield self.block([self.t.code(op)])
 
     def _work_table(self, index: int, old: Vec6, new: Vec6) -> Iterator[str]:
         """G10 L2 (or L20, LinuxCNC's G10 L20) set a work offset: the target's ``G10 L2 Pn`` when it has one,
@@ -586,9 +587,10 @@ class GcodeEmitter:
         The target's own code where it has it (the moved axes are then unknown again), else E0861."""
         from cncc.dialects import code_tenths
 
-        cdef = self.t.dialect.code(cmd.origin[:1], code_tenths(cmd.origin[1:]))
+        code = cmd.origin.code
+        cdef = self.t.dialect.code(code[:1], code_tenths(code[1:]))
         if cdef is None or cdef.op != "return_start":
-            self.warn(dg.XL_RETURN_START, f"{cmd.origin} returns to the program's start point; {self.t.name} has "
+            self.warn(dg.XL_RETURN_START, f"{code} returns to the program's start point; {self.t.name} has "
                                           "no such code and a rapid to an assumed start would move elsewhere "
                                           "from any other start", once=False)
             return
@@ -599,7 +601,7 @@ class GcodeEmitter:
 
     def _motion(self, cmd: Rapid | Linear | Arc) -> Iterator[str]:
         match cmd:
-            case Rapid() if cmd.origin[:3] == "G26":
+            case Rapid() if cmd.origin.kind is OriginKind.RETURN_START:
                 yield from self._return_start(cmd)
             case Rapid():
                 yield from self._g91([self.t.code("rapid"),

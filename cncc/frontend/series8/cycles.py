@@ -29,7 +29,7 @@ from cncc.frontend import cycles as shared
 from cncc.frontend import ops
 from cncc.frontend.series8 import state
 from cncc.frontend.series8.layer import LAYER
-from cncc.ir import CompSide, Cycle, CycleKind, SetMode, Vec6
+from cncc.ir import CompSide, Cycle, CycleKind, SetToolLength, Vec6
 
 if TYPE_CHECKING:
     from cncc.frontend.interp import BlockContext, Interpreter
@@ -93,7 +93,7 @@ def tool_length(it: Interpreter, ctx: BlockContext) -> None:
     value = it.options.tool_lengths_mm.get(index, 0.0)
     if (value, index) != (it.frame.tool_length_mm, it.frame.tool_length_index):
         it.set_frame(replace(it.frame, tool_length_mm=value, tool_length_index=index))
-        ctx.out.append(SetMode(ctx.span, it.frame, "tool_length_offset", value))
+        ctx.out.append(SetToolLength(ctx.span, it.frame, value))
 
 
 def _select(inner: ops.Handler) -> ops.Handler:

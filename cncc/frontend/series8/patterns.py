@@ -32,7 +32,7 @@ from cncc.frontend.series8 import state
 from cncc.frontend.series8.codes import vendor_gate
 from cncc.frontend.series8.cycles import emit, store_levels, tool_length
 from cncc.frontend.series8.layer import LAYER
-from cncc.ir import CycleKind, Linear, Vec6
+from cncc.ir import CycleKind, Linear, Origin, OriginKind, Vec6
 
 if TYPE_CHECKING:
     from cncc.frontend.interp import BlockContext, Interpreter
@@ -160,13 +160,13 @@ def _frame(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     u0, v0 = corner[p.first], corner[p.second]
     pts = [(u0 + legs[0][0], v0 + legs[0][1]), (u0 + su, v0 + sv),
            (u0 + legs[1][0], v0 + legs[1][1]), (u0, v0)]
-    motion = ops.block_motion(it, ctx)
+    motion, origin = ops.block_motion(it, ctx), Origin(OriginKind.CYCLE, c.name)
     if corner != it.pos:
-        ctx.out.append(Linear(ctx.span, it.frame, it.pos, corner, feed, motion, c.name))
+        ctx.out.append(Linear(ctx.span, it.frame, it.pos, corner, feed, motion, origin))
     at = corner
     for q in pts:
         nxt = _place(at, p.first, p.second, q)
-        ctx.out.append(Linear(ctx.span, it.frame, at, nxt, feed, motion, c.name))
+        ctx.out.append(Linear(ctx.span, it.frame, at, nxt, feed, motion, origin))
         at = nxt
     it.pos = at
     st = state.get(it)
