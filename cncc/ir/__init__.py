@@ -17,6 +17,7 @@ from cncc.ir.commands import (
     CoolantState,
     Cycle,
     CycleKind,
+    CycleKindBase,
     Dwell,
     FeedRate,
     Linear,
@@ -34,6 +35,7 @@ from cncc.ir.commands import (
     StopKind,
     ToolChange,
     Wait,
+    cycle_kind,
 )
 from cncc.ir.frame import AXES, IDENTITY_FRAME, ZERO6, CompSide, Frame, Plane, Units, Vec6
 from cncc.ir.legacy import SetMode, set_mode  # deprecated: typed mode commands instead
@@ -92,6 +94,7 @@ __all__ = [
     "CoolantState",
     "Cycle",
     "CycleKind",
+    "CycleKindBase",
     "Dwell",
     "FeedMode",
     "FeedRate",
@@ -146,5 +149,6 @@ __all__ = [
     "WriteToolData",
     "WriteToolTable",
     "WriteWorkTable",
+    "cycle_kind",
     "set_mode",
 ]

@@ -235,8 +235,24 @@ class Wait:
     seconds: float = 0.0
 
 
-class CycleKind(enum.Enum):
-    """Canned cycle kinds; the values are the ``cycle`` names of the dialect tables."""
+class CycleKindBase(enum.Enum):
+    """A canned cycle kind (no members of its own): the core kinds are :class:`CycleKind`; a
+    dialect layer with cycles of its own defines an enum deriving from this one
+    (``cncc/dialects/series8_cycles.py``).  The values are the ``cycle`` names of the dialect tables."""
+
+
+def cycle_kind(name: str) -> CycleKindBase | None:
+    """The cycle kind a dialect table names, among the kind enums defined (imported) so far."""
+    for kinds in CycleKindBase.__subclasses__():
+        try:
+            return kinds(name)
+        except ValueError:
+            continue
+    return None
+
+
+class CycleKind(CycleKindBase):
+    """The canned cycle kinds every dialect may use (the Fanuc family's and LinuxCNC's)."""
 
     DRILL = "drill"  # G81
     DRILL_DWELL = "drill_dwell"  # G82
@@ -250,14 +266,6 @@ class CycleKind(enum.Enum):
     BACK_BORE = "back_bore"  # G87: cut upward from R to the bottom
     BORE_MANUAL = "bore_manual"  # G88: operator retracts by hand
     BORE_DWELL_FEED_OUT = "bore_dwell_feed_out"  # G89
-    # SERIES 8's own cycles (docs/dialects-notes.md; sequences in cncc/passes/series8_cycles.py)
-    PECK_FIRST = "peck_first"  # G83: first stroke to the level I, then pecks of J, back to R after each
-    BORE_DWELL_STOP_OUT = "bore_dwell_stop_out"  # G86: dwell, spindle stop, feed out to R
-    BORE_DWELL_STOP_RAPID_OUT = "bore_dwell_stop_rapid_out"  # G86 read as its title says (rapid out)
-    CASE_BORE = "case_bore"  # G87: rapid to R, feed to Z and stay at depth
-    BORE_ORIENT_OUT = "bore_orient_out"  # G88: dwell, orient, shift I J, feed out, shift back
-    BORE_ORIENT_RAPID_OUT = "bore_orient_rapid_out"  # G88 read as its title says (rapid out)
-    BACK_BORE_RETURN = "back_bore_return"  # G89: back bore that feeds back down to R before leaving
     # LinuxCNC 2.9's own sequences (rs274's interp_cycles; cncc/passes/linuxcnc_cycles.py)
     TAP_RS274 = "tap_rs274"  # G84: overrides off, feed in, reverse, dwell, feed out to the clear level
     TAP_LEFT_RS274 = "tap_left_rs274"  # G74: the same with the spindle turning counter-clockwise
@@ -281,7 +289,7 @@ class Cycle:
 
     span: Span
     frame: Frame
-    kind: CycleKind
+    kind: CycleKindBase
     code: str  # as programmed ("G81"), so translation can keep the cycle
     start: Vec6  # tool position before the first hole
     holes: tuple[Vec6, ...]

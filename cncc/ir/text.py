@@ -289,7 +289,7 @@ class _Reader:
             return consts[t.text]
         if "." in t.text:
             type_name, member = t.text.split(".", 1)
-            et = self.vocab.enums.get(type_name)
+            et = self.vocab.enums.get(type_name) or _dialect_cycle_kinds().get(type_name)
             if et is None:
                 raise IrTextError(dg.IR_TEXT_NAME, t, f"no IR enum named {type_name}")
             if member not in et.__members__:
@@ -377,6 +377,11 @@ class _Reader:
         extra = ln.peek()
         if extra is not None:
             raise IrTextError(dg.IR_TEXT_SYNTAX, extra, f"nothing expected after the frame, not {extra.text!r}")
+
+
+def _dialect_cycle_kinds() -> dict[str, type[enum.Enum]]:
+    """The cycle kind enums of the dialect layers loaded (``cncc/dialects/series8_cycles.py``)."""
+    return {t.__name__: t for t in c.CycleKindBase.__subclasses__()}
 
 
 def _is_command_type(t: type) -> bool:

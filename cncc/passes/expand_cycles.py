@@ -27,6 +27,7 @@ from cncc.ir import (
     Command,
     Cycle,
     CycleKind,
+    CycleKindBase,
     Dwell,
     Linear,
     Motion,
@@ -274,7 +275,7 @@ def _manual(p: _Path) -> None:
     p.spindle(p.forward)
 
 
-SEQUENCES: dict[CycleKind, Callable[[_Path], None]] = {
+SEQUENCES: dict[CycleKindBase, Callable[[_Path], None]] = {
     CycleKind.DRILL: _drill,
     CycleKind.DRILL_DWELL: _drill,
     CycleKind.PECK_HIGH_SPEED: _peck_high_speed,
