@@ -198,7 +198,6 @@ def _offset_lines(c: SetWorkSystem | SetG92Offset | SetLocalOffset, last_g5x: st
 
 def _set_mode(c: ModeCommand, last_g5x: str, last_g92: str, fmt: CanonFormat) -> Iterator[str]:
     frame = c.frame
-    k = frame.units.mm_per_unit
     match c:
         case SetPlane():
             yield PREFIX + f"SELECT_PLANE({_PLANES[frame.plane]})"
@@ -207,22 +206,33 @@ def _set_mode(c: ModeCommand, last_g5x: str, last_g92: str, fmt: CanonFormat) ->
         case SetWorkSystem() | SetG92Offset() | SetLocalOffset():
             yield from _offset_lines(c, last_g5x, last_g92)
         case SetToolLength():
-            yield from _lines(fmt, "tool_length_offset", z=frame.tool_length_mm / k)
+            yield from _lines(fmt, "tool_length_offset", z=frame.tool_length_mm / frame.units.mm_per_unit)
         case SetXyRotation():
             yield from _lines(fmt, "xy_rotation", deg=float(c.angle_deg))
         case SetPathMode():
-            key = {PathMode.EXACT_STOP: "motion_exact_stop", PathMode.EXACT_PATH: "motion_exact_path"}.get(
-                c.mode, "motion_continuous")
-            yield from _lines(fmt, key, tol=c.tolerance_mm / k)
-            if c.naive_cam_mm is not None:
-                yield from _lines(fmt, "naivecam_tolerance", tol=c.naive_cam_mm / k)
+            yield from _path_mode(c, fmt)
+        case _:
+            yield from _machine_mode(c, fmt)
+
+
+def _path_mode(c: SetPathMode, fmt: CanonFormat) -> Iterator[str]:
+    k = c.frame.units.mm_per_unit
+    key = {PathMode.EXACT_STOP: "motion_exact_stop", PathMode.EXACT_PATH: "motion_exact_path"}.get(
+        c.mode, "motion_continuous")
+    yield from _lines(fmt, key, tol=c.tolerance_mm / k)
+    if c.naive_cam_mm is not None:
+        yield from _lines(fmt, "naivecam_tolerance", tol=c.naive_cam_mm / k)
+
+
+def _machine_mode(c: ModeCommand, fmt: CanonFormat) -> Iterator[str]:
+    """Feed mode, spindle synchronisation and mode, tool table and overrides."""
+    match c:
         case SetFeedMode():
             yield from _lines(fmt, "feed_mode", mode=1 if c.mode is FeedMode.PER_REV else 0)
+        case SpindleSync() if c.pitch_mm:
+            yield from _lines(fmt, "spindle_sync_on", pitch=float(c.pitch_mm) / c.frame.units.mm_per_unit)
         case SpindleSync():  # 0: the synchronisation ends
-            if c.pitch_mm:
-                yield from _lines(fmt, "spindle_sync_on", pitch=float(c.pitch_mm) / k)
-            else:
-                yield from _lines(fmt, "spindle_sync_off")
+            yield from _lines(fmt, "spindle_sync_off")
         case WriteToolTable():
             u = 25.4 if fmt.tool_table_inch else 1.0
             yield from _lines(fmt, "tool_table_entry", tool=c.tool, x=c.x_mm / u, z=c.length_mm / u,

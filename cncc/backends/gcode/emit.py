@@ -40,6 +40,7 @@ from cncc.backends.gcode.target import Target, make_target
 from cncc.diagnostics import DiagnosticSink
 from cncc.dialects import Dialect
 from cncc.ir import (
+    MODE_TYPES,
     Arc,
     Aux,
     CallBoundary,
@@ -53,6 +54,7 @@ from cncc.ir import (
     HoldAxes,
     Linear,
     Message,
+    ModeCommand,
     OriginKind,
     PathMode,
     Plane,
@@ -278,6 +280,14 @@ class GcodeEmitter:
                 yield self.op_block("program_stop", "a wait", comment=f"wait: {cmd.what}")
             case Aux():
                 yield from self._aux(cmd)
+            case _ if isinstance(cmd, MODE_TYPES):
+                yield from self._mode(cmd)
+            case _:
+                pass
+
+    def _mode(self, cmd: ModeCommand) -> Iterator[str]:
+        """The mode commands a translation acts on: call boundaries, G92 presets, G10 work offsets, G61/G64."""
+        match cmd:
             case CallBoundary() if self.opt.keep_subprograms:
                 from cncc.backends.gcode.subprograms import call_marker
 
@@ -290,8 +300,6 @@ class GcodeEmitter:
                 op = "exact_stop_mode" if cmd.mode is PathMode.EXACT_STOP else "continuous_mode"
                 if self.t.has(op):
                     yield self.block([self.t.code(op)])
-            case _:
-                pass
 
     def _tool_change(self, cmd: ToolChange) -> Iterator[str]:
         code = self.t.code("tool_change")
