@@ -58,12 +58,16 @@ def _round_trip(cmds: list[object], where: str, sources: SourceMap | None = None
 
 @pytest.mark.parametrize(("dialect", "paths"), FOLDERS, ids=[f"{d}-{ps[0].parent.name}" for d, ps in FOLDERS])
 def test_every_program_round_trips(dialect: str, paths: list[Path]) -> None:
-    """print -> parse -> print is the same text (with and without the source comments), parse(print(x)) == x."""
+    """print -> parse -> print is the same text and parse(print(x)) == x; with the source comments
+    (--emit=ir) the text is the same plus a comment per command (which test_emit_ir... reads back)."""
     for p in paths:
         cmds, r = compile_commands(p.read_text(encoding="utf-8", errors="replace"), dialect=dialect)
         assert cmds, p
-        _round_trip(cmds, str(p), r.sources)
-        _round_trip(cmds, str(p))
+        plain = _round_trip(cmds, str(p)).splitlines()
+        noted = ir_text(cmds, r.sources).splitlines()
+        assert len(noted) == len(plain)
+        assert all(n == t or n.startswith(t + "  ; <text>:") for n, t in zip(noted, plain, strict=True))
+        assert sum(n != t for n, t in zip(noted, plain, strict=True)) == len(cmds)  # a comment on every command
 
 
 def test_emit_ir_prints_the_text_form() -> None:
