@@ -38,6 +38,7 @@ from cncc.ir import (
     RigidTap,
     SelectTool,
     SetFeedMode,
+    SetFeedOverride,
     SetG92Offset,
     SetLocalOffset,
     SetOverrides,
@@ -124,34 +125,44 @@ def canon_lines(cmds: Iterable[Command], *, initial_frame: Frame | None = None,
             if g92 != last_g92:
                 yield PREFIX + g92
                 last_g92 = g92
+        line = _one_line(c, fmt)
+        if line is not None:
+            yield PREFIX + line
+            continue
         match c:
-            case Rapid():
-                yield PREFIX + "STRAIGHT_TRAVERSE(" + _pos_text(c.end, frame) + ")"
-            case Linear():
-                yield PREFIX + "STRAIGHT_FEED(" + _pos_text(c.end, frame) + ")"
-            case Arc():
-                yield PREFIX + _arc(c)
-            case Dwell():
-                yield PREFIX + f"DWELL({_f(c.seconds)})"
-            case FeedRate():
-                feed = c.feed / frame.units.mm_per_unit if fmt.feed_in_program_units else c.feed
-                yield PREFIX + f"SET_FEED_RATE({_f(feed)})"
             case RigidTap() | NurbsFeed() if fmt.has(_FOLDED[type(c)]):
                 skip = c.folded
                 yield from _lines(fmt, _FOLDED[type(c)], **_folded_fields(c))
             case _ if isinstance(c, MODE_TYPES):
                 yield from _set_mode(c, last_g5x, last_g92, fmt)
                 last_g5x, last_g92 = _offsets(frame)
-            case Comment():
-                yield PREFIX + f'COMMENT("{c.text}")'
-            case Message():
-                yield PREFIX + f'MESSAGE("{c.text}")'
             case Aux() | Wait():
                 pass
             case _:
                 key, fields = _other(c)
                 yield from _lines(fmt, key, **fields)
     yield from _lines(fmt, "end_of_trace")
+
+
+def _one_line(c: Command, fmt: CanonFormat) -> str | None:
+    """The call of a move, dwell, feed, comment or message (None for the other commands)."""
+    match c:
+        case Rapid():
+            return "STRAIGHT_TRAVERSE(" + _pos_text(c.end, c.frame) + ")"
+        case Linear():
+            return "STRAIGHT_FEED(" + _pos_text(c.end, c.frame) + ")"
+        case Arc():
+            return _arc(c)
+        case Dwell():
+            return f"DWELL({_f(c.seconds)})"
+        case FeedRate():
+            feed = c.feed / c.frame.units.mm_per_unit if fmt.feed_in_program_units else c.feed
+            return f"SET_FEED_RATE({_f(feed)})"
+        case Comment():
+            return f'COMMENT("{c.text}")'
+        case Message():
+            return f'MESSAGE("{c.text}")'
+    return None
 
 
 def _lines(fmt: CanonFormat, key: str, **fields: Any) -> Iterator[str]:
@@ -240,6 +251,8 @@ def _machine_mode(c: ModeCommand, fmt: CanonFormat) -> Iterator[str]:
                               back=float(c.back_angle_deg), orientation=c.orientation)
         case SetOverrides():
             yield from _lines(fmt, "overrides_on" if c.enabled else "overrides_off")
+        case SetFeedOverride():
+            yield from _lines(fmt, "feed_override_on" if c.enabled else "feed_override_off")
         case SetSpindleMode():
             yield from _lines(fmt, "spindle_mode", css_max=float(c.css_max_rpm))
 

@@ -134,6 +134,10 @@ def _overrides(span: Span, frame: Frame, name: str, value: object) -> m.ModeComm
     return m.SetOverrides(span, frame, bool(value))
 
 
+def _feed_override(span: Span, frame: Frame, name: str, value: object) -> m.ModeCommand:
+    return m.SetFeedOverride(span, frame, bool(value))
+
+
 def _held_axes(span: Span, frame: Frame, name: str, value: object) -> m.ModeCommand:
     return m.HoldAxes(span, frame, cast(m.Held6, value))
 
@@ -179,6 +183,7 @@ _BUILDERS: dict[str, Callable[[Span, Frame, str, object], m.ModeCommand]] = {
     "rigid_tap": _rigid_tap,
     "nurbs_feed": _nurbs_feed,
     "overrides": _overrides,
+    "feed_override": _feed_override,
     "held_axes": _held_axes,
     "call_begin": _call_begin,
     "call_end": _call_begin,

@@ -263,6 +263,15 @@ class SetOverrides:
 
 
 @dataclass(frozen=True, slots=True)
+class SetFeedOverride:
+    """The feed override alone enabled or disabled (LinuxCNC G76 around each synchronised pass)."""
+
+    span: Span
+    frame: Frame
+    enabled: bool
+
+
+@dataclass(frozen=True, slots=True)
 class HoldAxes:
     """The machine moved these axes outside the program (``Frame.held_axes`` after it)."""
 
@@ -327,6 +336,7 @@ ModeCommand = (
     | RigidTap
     | NurbsFeed
     | SetOverrides
+    | SetFeedOverride
     | HoldAxes
     | CallBoundary
     | SetOutput
@@ -338,6 +348,6 @@ MODE_TYPES = (
     SetUnits, SetPlane, SetFeedMode, SetPathMode, SetCutterComp, SetToolLength, SetWorkSystem, SetG92Offset,
     PresetG92, SetLocalOffset, SetXyRotation, SetPolar, SetScaling, SetMirror, SetRotation, WriteToolTable,
     WriteWorkTable, WriteToolData, SetCssReference, SetSpindleMode, SpindleSync, RigidTap, NurbsFeed,
-    SetOverrides, HoldAxes, CallBoundary, SetOutput, SetSmoothing,
+    SetOverrides, SetFeedOverride, HoldAxes, CallBoundary, SetOutput, SetSmoothing,
 )
 """The mode command classes, for ``isinstance``."""

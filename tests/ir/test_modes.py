@@ -56,6 +56,7 @@ LEGACY = [
     ("rigid_tap", (V6, 4), ir.RigidTap(SP, F, V6, 4)),
     ("nurbs_feed", (5, 3, 7), ir.NurbsFeed(SP, F, 5, 3, 7)),
     ("overrides", False, ir.SetOverrides(SP, F, False)),
+    ("feed_override", True, ir.SetFeedOverride(SP, F, True)),
     ("held_axes", (True,) * 3 + (False,) * 3, ir.HoldAxes(SP, F, (True, True, True, False, False, False))),
     ("call_begin", ("0:12", "O100"), ir.CallBoundary(SP, F, True, "0:12", "O100")),
     ("call_end", ("0:12", "O100"), ir.CallBoundary(SP, F, False, "0:12", "O100")),

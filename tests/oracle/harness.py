@@ -14,13 +14,18 @@ from __future__ import annotations
 
 import os
 import re
+import resource
 import shutil
+import signal
 import subprocess
 import tempfile
 from dataclasses import dataclass, field
 from pathlib import Path
 
 TOLERANCE = 1e-4
+CPU_LIMIT_S = 4  # rs274 runs a generated program in well under a CPU second; more is its endless G71 loop
+WALL_TIMEOUT_S = 120.0  # and a wall-clock bound for a loaded machine
+TIMED_OUT = "rs274 did not finish (timed out)"
 WRAPPER_DEFAULT = Path(os.environ.get("XDG_CACHE_HOME", Path.home() / ".cache")) / "cncc" / "rs274" / "bin" / "rs274"
 
 COMPARED = frozenset({
@@ -34,6 +39,10 @@ COMPARED = frozenset({
 MESSAGES: dict[str, str] = {}
 
 _CALL = re.compile(r"^\s*(?:\d+\s+)?N\S*\s+([A-Z_0-9]+)\((.*)\)\s*$")
+
+
+def _limit_cpu() -> None:
+    resource.setrlimit(resource.RLIMIT_CPU, (CPU_LIMIT_S, CPU_LIMIT_S + 1))
 
 
 def rs274_path() -> Path | None:
@@ -77,13 +86,26 @@ def run_rs274(text: str, tool_table: str = "", *, exe: Path | None = None) -> Ru
         prog.write_text(text)
         tbl = Path(tmp) / "tool.tbl"
         tbl.write_text(tool_table)
-        for _ in range(3):  # rs274 now and then exits non-zero without a message: run it again
-            p = subprocess.run([str(exe), "-t", str(tbl), "-g", str(prog)], capture_output=True, text=True,
-                               timeout=30, cwd=tmp)
+        for _ in range(8):  # rs274 now and then exits non-zero without a message: run it again
+            try:
+                p = subprocess.run([str(exe), "-t", str(tbl), "-g", str(prog)], capture_output=True, text=True,
+                                   timeout=WALL_TIMEOUT_S, cwd=tmp, preexec_fn=_limit_cpu)
+            except subprocess.TimeoutExpired as exc:  # no verdict from rs274
+                out = exc.stdout.decode(errors="replace") if isinstance(exc.stdout, bytes) else (exc.stdout or "")
+                return Run(False, parse_trace(out), TIMED_OUT)
+            if p.returncode in (-signal.SIGXCPU, -signal.SIGKILL):  # an endless loop of rs274 (its G71 bug)
+                return Run(False, parse_trace(p.stdout), TIMED_OUT)
             err_lines = [ln for ln in p.stderr.splitlines() if ln.strip() and ln.strip() != "executing"]
-            if p.returncode == 0 or err_lines:
+            if p.returncode == 0 or (err_lines and not _table_race(err_lines[0], tool_table)):
                 break
     return Run(p.returncode == 0, parse_trace(p.stdout), err_lines[0] if err_lines else "")
+
+
+def _table_race(error: str, tool_table: str) -> bool:
+    """rs274 2.9 now and then starts before its tool table is loaded: "Requested tool 1 not found in
+    the tool table" for a tool the table has (about half the runs on a loaded machine); run it again."""
+    m = re.match(r"Requested tool (\d+) not found in the tool table", error)
+    return m is not None and re.search(rf"^\s*T{m.group(1)}\b", tool_table, re.MULTILINE) is not None
 
 
 def tool_table_mm(table: str) -> str:
@@ -153,6 +175,10 @@ def diff_calls(want: list[Call], got: list[Call], *, prefix: bool = False) -> st
 def compare(text: str, tool_table: str = "") -> Verdict:
     want = run_rs274(text, tool_table)
     got = run_cncc(text, tool_table)
+    if want.error == TIMED_OUT:  # no verdict from rs274: never an agreement (allow.toml may accept it)
+        d = diff_calls(want.calls[:len(got.calls)], got.calls, prefix=True)  # rs274 may repeat moves for ever
+        what = "ok" if got.ok else " ".join(got.codes)
+        return Verdict(False, f"{TIMED_OUT}; cncc {what}" + (f"; before it {d}" if d else ""), want, got)
     if want.ok != got.ok:
         why = f"rs274 error {want.error!r}" if not want.ok else f"cncc error {got.error!r}"
         return Verdict(False, f"only one fails: {why}", want, got)

@@ -15,16 +15,20 @@ from __future__ import annotations
 import os
 import re
 from collections.abc import Iterator
-from dataclasses import dataclass, field
 
 from cncc import diagnostics as dg
 from cncc.diagnostics import DiagnosticSink, Related
 from cncc.dialects import Dialect
 from cncc.dialects.errors import ControllerSink, ControllerTexts
 from cncc.frontend.interp import Interpreter
-from cncc.frontend.linuxcnc.builder import oword_of
+from cncc.frontend.linuxcnc import g76 as _g76  # noqa: F401  (registers G76)
+from cncc.frontend.linuxcnc.control import run_oword
 from cncc.frontend.linuxcnc.evaluate import EvalError, Evaluator, Parameters, Scope
+from cncc.frontend.linuxcnc.fastblock import run_plain
 from cncc.frontend.linuxcnc.flow import FlowIndex
+from cncc.frontend.linuxcnc.frames import Frame as Frame  # re-exported
+from cncc.frontend.linuxcnc.g7x import cycle_word, run_g7x
+from cncc.frontend.linuxcnc.lathe import block_words, diameter_mode
 from cncc.frontend.linuxcnc.report import Before, Reporter
 from cncc.frontend.parser import Parser
 from cncc.frontend.syntax import Assign, Block, CommentItem, Word
@@ -32,30 +36,15 @@ from cncc.ir import Command, Message
 from cncc.source import SourceFile, Span
 
 _MESSAGE = re.compile(r"^\(\s*(MSG|DEBUG|PRINT|ABORT)\s*,(.*)\)$", re.IGNORECASE | re.DOTALL)
+FAST_MOVES = True  # plain moves take cncc.frontend.linuxcnc.fastblock's path (tests turn it off)
 _PARAM_IN_TEXT = re.compile(r"#\s*<[^>]*>|#\d+")
-
-
-@dataclass(slots=True)
-class Frame:
-    """One running program or subroutine."""
-
-    index: FlowIndex
-    pc: int
-    name: str = "main"
-    return_pc: int = -1
-    caller: Frame | None = None
-    call_span: Span | None = None
-    repeats: dict[int, int] = field(default_factory=dict)
-    m98_count: int = 0
-    m98_start: int = 0
 
 
 class LinuxcncExecutor:
     def __init__(self, dialect: Dialect, sink: DiagnosticSink, it: Interpreter, parser: Parser,
                  include_dirs: tuple[str, ...] = (), max_steps: int = 5_000_000) -> None:
         self.dialect = dialect
-        self.sink = ControllerSink(sink, ControllerTexts(dialect.raw.get("errors", {})))
-        it.sink = self.sink
+        self.sink = ControllerSink(sink, ControllerTexts(dialect.raw.get("errors", {})))  # the run's (see run)
         self.it = it
         self.parser = parser
         self.params = Parameters(system=self._system)
@@ -75,6 +64,8 @@ class LinuxcncExecutor:
         self.line = 0  # the line of the block running (#<_line>)
         self.out: list[Command] = []
         self.stopped = False
+        self.fast = FAST_MOVES
+        self.capture: list[tuple[Span, tuple[Word, ...]]] | None = None  # a G7x profile being read (g7x.py)
 
     # ---- diagnostics
     def fail(self, code: str, span: Span, message: str, detail: str = "") -> None:
@@ -96,11 +87,16 @@ class LinuxcncExecutor:
             "_feed": it.modal.feed or 0.0, "_rpm": it.modal.spindle_rpm,
             "_current_tool": float(it.modal.tool_loaded), "_selected_tool": float(it.modal.tool_selected),
             "_value": 0.0, "_value_returned": 0.0, "_line": float(self.line),
+            "_lathe_diameter_mode": float(diameter_mode(it)), "_lathe_radius_mode": float(not diameter_mode(it)),
         }
         return values.get(name)
 
     # ---- running
     def run(self, src: SourceFile) -> Iterator[Command]:
+        with self.it.redirect(sink=self.sink):  # the interpreter reports in the controller's words too
+            yield from self._run(src)
+
+    def _run(self, src: SourceFile) -> Iterator[Command]:
         index = FlowIndex.build(list(self.parser.blocks(src)), src, self.sink)
         if index is None:
             return
@@ -159,10 +155,8 @@ class LinuxcncExecutor:
             return
         errors = self.sink.errors
         try:
-            oword = oword_of(block.statements)
+            oword = fr.index.owords.get(i)
             if oword is not None:
-                from cncc.frontend.linuxcnc.control import run_oword
-
                 run_oword(self, fr, i, oword)
             else:
                 self._block(fr, block)
@@ -172,13 +166,26 @@ class LinuxcncExecutor:
             self.stopped = True
 
     def _block(self, fr: Frame, block: Block) -> None:
-        words = self._drop_g80(tuple(self._value_word(w) for w in block.words))
+        words = tuple(self._value_word(w) for w in block.words)
+        if self.fast and self.capture is None and not diameter_mode(self.it):  # G7x profiles, G7: the full path
+            plain = run_plain(self.it, block, words)
+            if plain is not None:
+                self.out.extend(plain)
+                return
+        words = self._drop_g80(words)
         sets = [(s.target, self.ev.number(s.expr)) for s in block.statements if isinstance(s, Assign)]
         for target, value in sets:
             if target.index is None:
                 self.params.write_name(target.name, value)
             else:
                 self.params.write_number(self.ev.var_number(target), value)
+        words = block_words(self.it, words, capture=self.capture is not None)  # G7: X is a diameter
+        if self.capture is not None:  # the profile of a G70-G72: its moves are collected, not run
+            self.capture.append((fr.index.span(block), words))
+            return
+        if (g7x := cycle_word(words)) is not None:
+            run_g7x(self, fr, block, words, g7x)
+            return
         comments = self._messages(fr, block)
         m98 = [w for w in words if w.letter == "M" and round(w.value) in (98, 99)]
         if m98:
