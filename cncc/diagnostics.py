@@ -61,6 +61,9 @@ DECIMAL_NOT_ALLOWED = _define("E0109", E, "a decimal point is written where the 
 FULLWIDTH = _define("W0110", W, "full-width punctuation (as in some manuals) was read as its ASCII form")
 EXPONENT_NUMBER = _define("E0160", E, "a number in exponent notation (1e3), which no controller reads; "
                           "block skipped")
+IR_TEXT_SYNTAX = _define("E0194", E, "IR text (cncc.ir.text) that does not follow its format")
+IR_TEXT_NAME = _define("E0195", E, "IR text that names a command, type, field or frame the IR does not have, "
+                       "or gives a field a value of the wrong type")
 NUMBER_OVERFLOW = _define("E0161", E, "a number too large for any controller (13 or more integer digits); "
                           "block skipped")
 

@@ -17,6 +17,7 @@ from typing import Any
 
 from cncc.backends.canon_format import CanonFormat
 from cncc.ir import (
+    MODE_TYPES,
     Arc,
     Aux,
     Command,
@@ -24,29 +25,50 @@ from cncc.ir import (
     Coolant,
     CoolantState,
     Dwell,
+    FeedMode,
     FeedRate,
     Frame,
     Linear,
     Message,
+    ModeCommand,
+    NurbsFeed,
     PathMode,
     Plane,
+    Probe,
     Rapid,
+    RigidTap,
     SelectTool,
-    SetMode,
+    SetFeedMode,
+    SetFeedOverride,
+    SetG92Offset,
+    SetLocalOffset,
+    SetOverrides,
+    SetPathMode,
+    SetPlane,
+    SetSpindleMode,
+    SetToolLength,
+    SetToolNumber,
+    SetUnits,
+    SetWorkSystem,
+    SetXyRotation,
     Spindle,
     SpindleSpeed,
     SpindleState,
+    SpindleSync,
     Stop,
     StopKind,
     ToolChange,
     Units,
     Vec6,
     Wait,
+    WriteToolTable,
 )
 
 PREFIX = " N..... "
 _PLANES = {Plane.XY: "CANON_PLANE_XY", Plane.YZ: "CANON_PLANE_YZ", Plane.ZX: "CANON_PLANE_XZ"}
 _UNITS = {Units.MM: "CANON_UNITS_MM", Units.INCH: "CANON_UNITS_INCHES"}
+_FOLDED: dict[type[RigidTap | NurbsFeed | Probe], str] = {  # [canon] keys
+    RigidTap: "rigid_tap", NurbsFeed: "nurbs_feed", Probe: "probe"}
 
 
 def _f(x: float) -> str:
@@ -95,7 +117,7 @@ def canon_lines(cmds: Iterable[Command], *, initial_frame: Frame | None = None,
             skip -= 1
             continue
         frame = c.frame
-        if not isinstance(c, SetMode):
+        if not isinstance(c, MODE_TYPES):
             entry = offsets.get(id(frame))
             if entry is None or entry[0] is not frame:
                 entry = offsets[id(frame)] = (frame, _offsets(frame))
@@ -111,10 +133,10 @@ def canon_lines(cmds: Iterable[Command], *, initial_frame: Frame | None = None,
             yield PREFIX + line
             continue
         match c:
-            case SetMode(name="rigid_tap" | "nurbs_feed" | "probe") if fmt.has(c.name):
-                skip = int(c.value[-1])
-                yield from _lines(fmt, c.name, **_folded_fields(c))
-            case SetMode():
+            case RigidTap() | NurbsFeed() | Probe() if fmt.has(_FOLDED[type(c)]):
+                skip = c.folded
+                yield from _lines(fmt, _FOLDED[type(c)], **_folded_fields(c))
+            case _ if isinstance(c, MODE_TYPES):
                 yield from _set_mode(c, last_g5x, last_g92, fmt)
                 last_g5x, last_g92 = _offsets(frame)
             case Aux() | Wait():
@@ -172,76 +194,73 @@ def _other(c: Command) -> tuple[str, dict[str, Any]]:
     return "none", {}
 
 
-def _folded_fields(c: SetMode) -> dict[str, Any]:
-    k = c.frame.units.mm_per_unit
-    if c.name in ("rigid_tap", "probe"):  # value: (end Vec6, [code,] commands folded)
-        end = c.value[0]
+def _folded_fields(c: RigidTap | NurbsFeed | Probe) -> dict[str, Any]:
+    if isinstance(c, RigidTap | Probe):
+        k = c.frame.units.mm_per_unit
+        end = c.end
         return {"x": end[0] / k, "y": end[1] / k, "z": end[2] / k, "a": end[3], "b": end[4], "c": end[5]}
-    points, order, _ = c.value  # nurbs_feed: (control points, order, commands folded)
-    return {"points": points, "order": order}
+    return {"points": c.points, "order": c.order}
 
 
-def _set_mode(c: SetMode, last_g5x: str, last_g92: str, fmt: CanonFormat) -> Iterator[str]:
-    frame = c.frame
-    k = frame.units.mm_per_unit
-    if c.name == "plane":
-        yield PREFIX + f"SELECT_PLANE({_PLANES[frame.plane]})"
-    elif c.name == "units":
-        yield PREFIX + f"USE_LENGTH_UNITS({_UNITS[frame.units]})"
-    elif c.name in ("g5x_offset", "g92_offset", "g52_offset"):
-        yield from _offset_lines(c, last_g5x, last_g92)
-    elif c.name == "tool_length_offset":
-        yield from _lines(fmt, "tool_length_offset", z=frame.tool_length_mm / k)
-    elif c.name == "xy_rotation":
-        yield from _lines(fmt, "xy_rotation", deg=float(c.value))
-    elif c.name in ("path_mode", "cycle_path_mode"):
-        yield from _path_mode(c, fmt)
-    elif c.name == "feed_mode":
-        yield from _lines(fmt, "feed_mode", mode=1 if c.value == "per_rev" else 0)
-    elif c.name == "spindle_sync":  # value: pitch in mm per revolution, 0 to end the synchronisation
-        if c.value:
-            yield from _lines(fmt, "spindle_sync_on", pitch=float(c.value) / k)
-        else:
-            yield from _lines(fmt, "spindle_sync_off")
-    elif c.name == "tool_table":
-        yield from _tool_table(c, fmt)
-    elif c.name == "overrides":  # value: True (on) / False (off)
-        yield from _lines(fmt, "overrides_on" if c.value else "overrides_off")
-    elif c.name == "tool_number":
-        yield from _lines(fmt, "tool_number", tool=int(c.value))
-    elif c.name == "feed_override":  # value: True (on) / False (off)
-        yield from _lines(fmt, "feed_override_on" if c.value else "feed_override_off")
-    elif c.name == "spindle_mode":
-        yield from _lines(fmt, "spindle_mode", css_max=float(c.value or 0.0))
-
-
-def _offset_lines(c: SetMode, last_g5x: str, last_g92: str) -> Iterator[str]:
-    """A G5x, G92 or G52 change: the G5x call for a G5x change (or when it differs), the G92 call otherwise."""
+def _offset_lines(c: SetWorkSystem | SetG92Offset | SetLocalOffset, last_g5x: str, last_g92: str) -> Iterator[str]:
     g5x, g92 = _offsets(c.frame)
-    if c.name == "g5x_offset" or g5x != last_g5x:
+    work = isinstance(c, SetWorkSystem)
+    if work or g5x != last_g5x:
         yield PREFIX + g5x
-    if g92 != last_g92 or c.name != "g5x_offset":
+    if g92 != last_g92 or not work:
         yield PREFIX + g92
 
 
-def _path_mode(c: SetMode, fmt: CanonFormat) -> Iterator[str]:
-    """``path_mode`` / ``cycle_path_mode``; value: PathMode or (mode, P mm, Q naive-CAM mm | None)."""
+def _set_mode(c: ModeCommand, last_g5x: str, last_g92: str, fmt: CanonFormat) -> Iterator[str]:
+    frame = c.frame
+    match c:
+        case SetPlane():
+            yield PREFIX + f"SELECT_PLANE({_PLANES[frame.plane]})"
+        case SetUnits():
+            yield PREFIX + f"USE_LENGTH_UNITS({_UNITS[frame.units]})"
+        case SetWorkSystem() | SetG92Offset() | SetLocalOffset():
+            yield from _offset_lines(c, last_g5x, last_g92)
+        case SetToolLength():
+            yield from _lines(fmt, "tool_length_offset", z=frame.tool_length_mm / frame.units.mm_per_unit)
+        case SetXyRotation():
+            yield from _lines(fmt, "xy_rotation", deg=float(c.angle_deg))
+        case SetPathMode():
+            yield from _path_mode(c, fmt)
+        case _:
+            yield from _machine_mode(c, fmt)
+
+
+def _path_mode(c: SetPathMode, fmt: CanonFormat) -> Iterator[str]:
     k = c.frame.units.mm_per_unit
-    mode_v, tol_mm, naive_mm = c.value if isinstance(c.value, tuple) else (c.value, 0.0, None)
     key = {PathMode.EXACT_STOP: "motion_exact_stop", PathMode.EXACT_PATH: "motion_exact_path"}.get(
-        mode_v, "motion_continuous")
-    yield from _lines(fmt, key, tol=tol_mm / k)
-    if naive_mm is not None:
-        yield from _lines(fmt, "naivecam_tolerance", tol=naive_mm / k)
+        c.mode, "motion_continuous")
+    yield from _lines(fmt, key, tol=c.tolerance_mm / k)
+    if c.naive_cam_mm is not None:
+        yield from _lines(fmt, "naivecam_tolerance", tol=c.naive_cam_mm / k)
 
 
-def _tool_table(c: SetMode, fmt: CanonFormat) -> Iterator[str]:
-    """``tool_table``; value: (tool, length mm, diameter mm[, (x mm, front, back, orientation)])."""
-    tool, z_mm, dia_mm = c.value[:3]
-    x_mm, front, back, orient = c.value[3] if len(c.value) > 3 else (0.0, 0.0, 0.0, 0)
-    u = 25.4 if fmt.tool_table_inch else 1.0
-    yield from _lines(fmt, "tool_table_entry", tool=tool, x=x_mm / u, z=z_mm / u, diameter=dia_mm / u,
-                      front=float(front), back=float(back), orientation=orient)
+def _machine_mode(c: ModeCommand, fmt: CanonFormat) -> Iterator[str]:
+    """Feed mode, spindle synchronisation and mode, tool table and overrides."""
+    match c:
+        case SetFeedMode():
+            yield from _lines(fmt, "feed_mode", mode=1 if c.mode is FeedMode.PER_REV else 0)
+        case SpindleSync() if c.pitch_mm:
+            yield from _lines(fmt, "spindle_sync_on", pitch=float(c.pitch_mm) / c.frame.units.mm_per_unit)
+        case SpindleSync():  # 0: the synchronisation ends
+            yield from _lines(fmt, "spindle_sync_off")
+        case WriteToolTable():
+            u = 25.4 if fmt.tool_table_inch else 1.0
+            yield from _lines(fmt, "tool_table_entry", tool=c.tool, x=c.x_mm / u, z=c.length_mm / u,
+                              diameter=c.diameter_mm / u, front=float(c.front_angle_deg),
+                              back=float(c.back_angle_deg), orientation=c.orientation)
+        case SetOverrides():
+            yield from _lines(fmt, "overrides_on" if c.enabled else "overrides_off")
+        case SetFeedOverride():
+            yield from _lines(fmt, "feed_override_on" if c.enabled else "feed_override_off")
+        case SetSpindleMode():
+            yield from _lines(fmt, "spindle_mode", css_max=float(c.css_max_rpm))
+        case SetToolNumber():  # M61 Q
+            yield from _lines(fmt, "tool_number", tool=c.tool)
 
 
 def _arc(c: Arc) -> str:

@@ -26,7 +26,7 @@ from cncc.diagnostics import DiagnosticSink
 from cncc.dialects import Dialect
 from cncc.frontend.interp import InterpOptions, Interpreter
 from cncc.frontend.parser import MAX_LINE_CHARS, ParseOptions, Parser
-from cncc.ir import Arc, Command, FeedRate, Linear, Plane
+from cncc.ir import PROGRAMMED, Arc, Command, FeedRate, Linear, Plane
 from cncc.ir.fastnew import new_rapid, new_span
 from cncc.source import SourceFile, Span
 
@@ -229,7 +229,7 @@ def lower_straight(  # noqa: C901 - one inlined hot loop: a call per line would 
                         l_end(cmd, q)
                         l_feed(cmd, feed_mm_min)
                         l_motion(cmd, path)
-                        l_origin(cmd, "")
+                        l_origin(cmd, PROGRAMMED)
                         yield cmd
                     elif motion == "rapid":
                         yield new_rapid(span, frame, p, q, path)

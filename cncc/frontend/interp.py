@@ -30,17 +30,7 @@ from cncc.frontend.registry import ORDER as ORDER  # re-exported (the in-block o
 from cncc.frontend.run_state import CycleState, LayerRecords, References, RunNotes, TransformState
 from cncc.frontend.syntax import Block, Word
 from cncc.frontend.words import WordReader
-from cncc.ir import (
-    IDENTITY_FRAME,
-    ZERO6,
-    Command,
-    Comment,
-    Frame,
-    Motion,
-    SetMode,
-    Units,
-    Vec6,
-)
+from cncc.ir import IDENTITY_FRAME, ZERO6, Command, Comment, Frame, HoldAxes, Motion, Units, Vec6
 from cncc.ir.frame import ALL_HELD, LINEAR_HELD, NOT_HELD
 from cncc.source import Span
 
@@ -240,14 +230,14 @@ class Interpreter:
     def hold_axes(self, axes: Iterable[int], ctx: BlockContext) -> None:
         """The machine moved these axes outside the program (tool change, reference return, G53, probe): the
         next absolute word of each says where it goes (a translation writes it even if unchanged).  A
-        ``SetMode("held_axes")`` record tells the emitter."""
+        ``HoldAxes`` record tells the emitter."""
         held = list(self.frame.held_axes)
         for k in axes:
             held[k] = True
         new = (held[0], held[1], held[2], held[3], held[4], held[5])
         if new != self.frame.held_axes:
             self.frame = replace(self.frame, held_axes=new)
-            ctx.out.append(SetMode(ctx.span, self.frame, "held_axes", new))
+            ctx.out.append(HoldAxes(ctx.span, self.frame, new))
 
     def release_axes(self, axes: Iterable[int]) -> None:
         """An absolute position was programmed for ``axes``: they no longer keep a cancelled transform's point."""

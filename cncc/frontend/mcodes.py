@@ -23,7 +23,7 @@ from typing import TYPE_CHECKING
 from cncc import diagnostics as dg
 from cncc.dialects import CodeDef, Dialect, code_name
 from cncc.frontend.ops import handler
-from cncc.ir import Aux, SetMode
+from cncc.ir import Aux, SetSmoothing, SetWorkSystem
 
 if TYPE_CHECKING:
     from cncc.frontend.interp import BlockContext, Interpreter
@@ -61,7 +61,7 @@ def _aux(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
 @handler("smoothing")
 def _smoothing(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     values = tuple((k, ctx.words[k].value) for k in sorted(c.words) if k in ctx.words)
-    ctx.out.append(SetMode(ctx.span, it.frame, "smoothing", (c.name, values)))
+    ctx.out.append(SetSmoothing(ctx.span, it.frame, c.name, values))
 
 
 @handler("work_extended")
@@ -75,4 +75,4 @@ def _work_extended(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     off = it.options.work_offsets_mm.get(index, (0.0,) * 6)
     if index != it.frame.work_index or off != it.frame.work_offset_mm:
         it.set_frame(replace(it.frame, work_index=index, work_offset_mm=off))
-        ctx.out.append(SetMode(ctx.span, it.frame, "g5x_offset", index))
+        ctx.out.append(SetWorkSystem(ctx.span, it.frame, index))

@@ -28,18 +28,30 @@ from cncc.frontend.registry import (
     handler,
 )
 from cncc.ir import (
+    MACHINE_ORIGIN,
+    PROGRAMMED,
     Arc,
     Coolant,
     CoolantState,
     Dwell,
+    FeedMode,
     FeedRate,
     Linear,
     Motion,
+    Origin,
+    OriginKind,
     PathMode,
     Plane,
+    PresetG92,
     Rapid,
     SelectTool,
-    SetMode,
+    SetFeedMode,
+    SetG92Offset,
+    SetLocalOffset,
+    SetPathMode,
+    SetPlane,
+    SetUnits,
+    SetWorkSystem,
     Spindle,
     SpindleSpeed,
     SpindleState,
@@ -240,10 +252,11 @@ def _feed_scale(it: Interpreter) -> float:
 
 
 def _rapid(it: Interpreter, ctx: BlockContext, end: Vec6) -> None:
-    origin = "G53" if "machine_coords" in ctx.block_flags else ""  # transforms leave G53 moves alone
-    ctx.out.append(Rapid(ctx.span, it.frame, it.pos, end, block_motion(it, ctx), origin))
+    machine = "machine_coords" in ctx.block_flags  # transforms leave G53 moves alone
+    ctx.out.append(Rapid(ctx.span, it.frame, it.pos, end, block_motion(it, ctx),
+                         MACHINE_ORIGIN if machine else PROGRAMMED))
     it.pos = end
-    if origin:
+    if machine:
         it.hold_axes(_axes_named(ctx), ctx)  # in machine terms: the program's next absolute word is written again
 
 
@@ -251,10 +264,11 @@ def _linear(it: Interpreter, ctx: BlockContext, end: Vec6) -> None:
     f = feed_mm_min(it, ctx)
     if f is None:
         return
-    origin = "G53" if "machine_coords" in ctx.block_flags else ""
-    ctx.out.append(Linear(ctx.span, it.frame, it.pos, end, f, block_motion(it, ctx), origin))
+    machine = "machine_coords" in ctx.block_flags
+    ctx.out.append(Linear(ctx.span, it.frame, it.pos, end, f, block_motion(it, ctx),
+                          MACHINE_ORIGIN if machine else PROGRAMMED))
     it.pos = end
-    if origin:
+    if machine:
         it.hold_axes(_axes_named(ctx), ctx)
 
 
@@ -349,7 +363,7 @@ def _feed_mode(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     per_rev = c.op == "feed_per_rev"
     if per_rev != it.modal.per_rev:
         it.modal = it.modal.with_(per_rev=per_rev)
-        ctx.out.append(SetMode(ctx.span, it.frame, "feed_mode", "per_rev" if per_rev else "per_min"))
+        ctx.out.append(SetFeedMode(ctx.span, it.frame, FeedMode.PER_REV if per_rev else FeedMode.PER_MIN))
 
 
 @handler("dwell")
@@ -389,7 +403,7 @@ def _plane(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     plane = {"plane_xy": Plane.XY, "plane_zx": Plane.ZX, "plane_yz": Plane.YZ}[c.op]
     if plane is not it.frame.plane:
         it.set_frame(replace(it.frame, plane=plane))
-        ctx.out.append(SetMode(ctx.span, it.frame, "plane", plane))
+        ctx.out.append(SetPlane(ctx.span, it.frame, plane))
 
 
 @handler("inch", "metric")
@@ -397,7 +411,7 @@ def _units(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     units = Units.INCH if c.op == "inch" else Units.MM
     if units is not it.frame.units:
         it.set_frame(replace(it.frame, units=units))
-        ctx.out.append(SetMode(ctx.span, it.frame, "units", units))
+        ctx.out.append(SetUnits(ctx.span, it.frame, units))
 
 
 @handler("work")
@@ -405,7 +419,7 @@ def _work(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     off = it.options.work_offsets_mm.get(c.index, (0.0,) * 6)
     if c.index != it.frame.work_index or off != it.frame.work_offset_mm:
         it.set_frame(replace(it.frame, work_index=c.index, work_offset_mm=off))
-        ctx.out.append(SetMode(ctx.span, it.frame, "g5x_offset", c.index))
+        ctx.out.append(SetWorkSystem(ctx.span, it.frame, c.index))
 
 
 @handler("exact_stop_mode", "continuous_mode", "curve_mode", "tapping_mode")
@@ -413,7 +427,7 @@ def _path_mode(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     mode = PathMode.EXACT_STOP if c.op == "exact_stop_mode" else PathMode.CONTINUOUS
     if mode is not it.modal.path.mode:
         it.modal = it.modal.with_(path=it.intern_motion(replace(it.modal.path, mode=mode)))
-        ctx.out.append(SetMode(ctx.span, it.frame, "path_mode", mode))
+        ctx.out.append(SetPathMode(ctx.span, it.frame, mode))
 
 
 @handler("exact_stop_once")
@@ -471,10 +485,10 @@ def _g92(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
         changed = True
     if changed:
         it.set_frame(replace(it.frame, g92_offset_mm=tuple(shift)))  # type: ignore[arg-type]
-        ctx.out.append(SetMode(ctx.span, it.frame, "g92_offset", it.frame.g92_offset_mm))
+        ctx.out.append(SetG92Offset(ctx.span, it.frame, it.frame.g92_offset_mm))
         # the preset depends on where the machine is: a translation writes it even when the offset
         # came out unchanged from the assumed start
-        ctx.out.append(SetMode(ctx.span, it.frame, "g92_preset", tuple(_axes_named(ctx))))
+        ctx.out.append(PresetG92(ctx.span, it.frame, tuple(_axes_named(ctx))))
 
 
 @handler("local_offset")
@@ -485,10 +499,10 @@ def _g52(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
         w = ctx.words.get(letter)
         if w is not None:
             local[i] = it.reader.axis_value(w)
-    new = tuple(local)
+    new: Vec6 = (local[0], local[1], local[2], local[3], local[4], local[5])
     if new != it.frame.local_offset_mm:
-        it.set_frame(replace(it.frame, local_offset_mm=new))  # type: ignore[arg-type]
-        ctx.out.append(SetMode(ctx.span, it.frame, "g52_offset", new))
+        it.set_frame(replace(it.frame, local_offset_mm=new))
+        ctx.out.append(SetLocalOffset(ctx.span, it.frame, new))
 
 
 def _reference_program(it: Interpreter, index: int) -> Vec6 | None:
@@ -516,12 +530,12 @@ def _home_via(it: Interpreter, ctx: BlockContext, c: CodeDef, index: int) -> Non
         return
     if not it.modal.incremental:  # an absolute intermediate point (in G91: an increment from the tool)
         it.release_axes(named)
-    ctx.out.append(Rapid(ctx.span, it.frame, it.pos, mid, block_motion(it, ctx), origin=c.name))
+    ctx.out.append(Rapid(ctx.span, it.frame, it.pos, mid, block_motion(it, ctx), Origin(OriginKind.HOME, c.name)))
     it.pos = mid
     it.release_axes(named)  # the named axes end at the reference position (SYNTEC §1.2.23: "G28 or G30")
     end = tuple(ref[i] if i in named else mid[i] for i in range(6))
     ctx.out.append(Rapid(ctx.span, it.frame, mid, end, block_motion(it, ctx),  # type: ignore[arg-type]
-                         origin=f"{c.name} ref"))  # "ref": the leg no transform applies to
+                         Origin(OriginKind.REFERENCE, c.name)))  # the leg no transform applies to
     it.pos = end  # type: ignore[assignment]
     it.hold_axes(named, ctx)  # at the machine's reference, which the program does not know
     flags = tuple(i in named for i in range(6))
@@ -554,10 +568,11 @@ def _g29(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
         return
     mid = tuple(it.refs.intermediate.point[i] if i in named else it.pos[i] for i in range(6))
     it.release_axes(named)  # the intermediate point is an absolute position
-    ctx.out.append(Rapid(ctx.span, it.frame, it.pos, mid, block_motion(it, ctx), origin=c.name))  # type: ignore[arg-type]
+    ctx.out.append(Rapid(ctx.span, it.frame, it.pos, mid, block_motion(it, ctx),  # type: ignore[arg-type]
+                         Origin(OriginKind.HOME, c.name)))
     it.pos = mid  # type: ignore[assignment]
     end = target(it, ctx)  # incremental words are taken from the intermediate point
-    ctx.out.append(Rapid(ctx.span, it.frame, it.pos, end, block_motion(it, ctx), origin=c.name))
+    ctx.out.append(Rapid(ctx.span, it.frame, it.pos, end, block_motion(it, ctx), Origin(OriginKind.HOME, c.name)))
     it.pos = end
 
 

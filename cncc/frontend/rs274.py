@@ -28,7 +28,21 @@ from cncc.frontend import ops
 from cncc.frontend.ops import AXES, handler, target
 from cncc.frontend.rs274_state import Rs274State as Rs274State  # re-exported
 from cncc.frontend.rs274_state import state as state  # re-exported
-from cncc.ir import ZERO6, FeedRate, PathMode, Rapid, SetMode, Vec6
+from cncc.ir import (
+    ZERO6,
+    FeedMode,
+    FeedRate,
+    Origin,
+    OriginKind,
+    PathMode,
+    Rapid,
+    SetCutterComp,
+    SetFeedMode,
+    SetG92Offset,
+    SetPathMode,
+    SetToolLength,
+    Vec6,
+)
 
 if TYPE_CHECKING:
     from cncc.frontend.interp import BlockContext, Interpreter
@@ -44,9 +58,10 @@ def _set_path(it: Interpreter, ctx: BlockContext, mode: PathMode, tol_mm: float 
     """Set the path mode; like LinuxCNC, report it on every G61/G61.1/G64 (changed or not)."""
     new = it.intern_motion(replace(it.modal.path, mode=mode, blend_tolerance_mm=tol_mm))
     it.modal = it.modal.with_(path=new)
-    value = (mode, tol_mm or 0.0, naive_mm) if mode is PathMode.CONTINUOUS else (mode, 0.0, None)
+    continuous = mode is PathMode.CONTINUOUS
     state(it).naive_mm = naive_mm or 0.0
-    ctx.out.append(SetMode(ctx.span, it.frame, "path_mode", value))
+    ctx.out.append(SetPathMode(ctx.span, it.frame, mode, (tol_mm or 0.0) if continuous else 0.0,
+                               naive_mm if continuous else None))
 
 
 @handler("exact_path_mode")
@@ -126,7 +141,7 @@ def _g43_1(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     old = it.frame.tool_length_mm
     if value != old:
         it.set_frame(replace(it.frame, tool_length_mm=value, tool_length_index=0))
-        ctx.out.append(SetMode(ctx.span, it.frame, "tool_length_offset", value))
+        ctx.out.append(SetToolLength(ctx.span, it.frame, value))
         shift_z(it, old)  # the Z word is the offset, not a move
 
 
@@ -144,7 +159,7 @@ def _g41_1(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     f = it.frame
     if (side, radius) != (f.comp_side, f.comp_radius_mm):
         it.set_frame(replace(f, comp_side=side, comp_radius_mm=radius, comp_index=0))
-        ctx.out.append(SetMode(ctx.span, it.frame, "cutter_comp", side))
+        ctx.out.append(SetCutterComp(ctx.span, it.frame, side))
 
 
 # ---- G92.1 / G92.2 / G92.3 -------------------------------------------------------------------
@@ -152,7 +167,7 @@ def _set_g92(it: Interpreter, ctx: BlockContext, shift: Vec6) -> None:
     """Set the G92 offset; like LinuxCNC, report it on every G92/G52/G92.x (changed or not)."""
     if shift != it.frame.g92_offset_mm:
         it.set_frame(replace(it.frame, g92_offset_mm=shift))
-    ctx.out.append(SetMode(ctx.span, it.frame, "g92_offset", shift))
+    ctx.out.append(SetG92Offset(ctx.span, it.frame, shift))
 
 
 @handler("set_origin_clear", "set_origin_suspend", "set_origin_restore")
@@ -221,13 +236,13 @@ def _g28(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     only_named = bool(it.dialect.option("home_named_axes_only", False))
     if named or only_named:  # LinuxCNC makes the intermediate move even to where the tool is
         mid = target(it, ctx) if named else it.pos
-        ctx.out.append(Rapid(ctx.span, it.frame, it.pos, mid, it.modal.path, origin=c.name))
+        ctx.out.append(Rapid(ctx.span, it.frame, it.pos, mid, it.modal.path, Origin(OriginKind.HOME, c.name)))
         it.pos = mid
     home = home_position(it.frame, rotation_deg(it, it.frame.work_index), _stored(it, which))
     if only_named and named:  # LinuxCNC: only the named axes go home
         home = _vec([home[i] if i in named else it.pos[i] for i in range(6)])
     end = home
-    ctx.out.append(Rapid(ctx.span, it.frame, it.pos, end, it.modal.path, origin=f"{c.name} ref"))
+    ctx.out.append(Rapid(ctx.span, it.frame, it.pos, end, it.modal.path, Origin(OriginKind.REFERENCE, c.name)))
     it.pos = end
 
 
@@ -247,7 +262,7 @@ def _g93(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     if not st.inverse_time:
         st.inverse_time = True
         it.modal = it.modal.with_(per_rev=False, path=it.intern_motion(replace(it.modal.path, inverse_time=True)))
-        ctx.out.append(SetMode(ctx.span, it.frame, "feed_mode", "inverse_time"))
+        ctx.out.append(SetFeedMode(ctx.span, it.frame, FeedMode.INVERSE_TIME))
 
 
 @handler("feed_per_min_rs274", "feed_per_rev_rs274")
@@ -258,7 +273,7 @@ def _g94(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
         st.inverse_time = False
         it.modal = it.modal.with_(per_rev=per_rev, path=it.intern_motion(replace(it.modal.path,
                                                                                    inverse_time=False)))
-        ctx.out.append(SetMode(ctx.span, it.frame, "feed_mode", "per_rev" if per_rev else "per_min"))
+        ctx.out.append(SetFeedMode(ctx.span, it.frame, FeedMode.PER_REV if per_rev else FeedMode.PER_MIN))
 
 
 def _inverse_time_feed(it: Interpreter, ctx: BlockContext) -> None:

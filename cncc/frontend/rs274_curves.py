@@ -1,6 +1,6 @@
 """LinuxCNC's splines: ``G5`` cubic, ``G5.1`` quadratic, ``G5.2``/``G5.3`` NURBS.
 
-Each curve becomes, in the IR, a ``SetMode("nurbs_feed", (points, order, n))`` marker
+Each curve becomes, in the IR, a ``NurbsFeed(points, order, n)`` marker
 followed by the ``n`` arcs and lines of LinuxCNC's biarc approximation
 (:mod:`cncc.frontend.nurbs`), all with ``origin`` the code as programmed.  The canon
 backend prints the marker as LinuxCNC's ``NURBS_FEED(points, ...)`` when the
@@ -23,7 +23,7 @@ from cncc import diagnostics as dg
 from cncc.dialects import CodeDef
 from cncc.frontend import nurbs, ops
 from cncc.frontend.rs274_g10 import controller_error
-from cncc.ir import Arc, CompSide, Linear, Plane, SetMode, Vec6
+from cncc.ir import Arc, CompSide, Linear, NurbsFeed, Origin, OriginKind, Plane, Vec6
 
 if TYPE_CHECKING:
     from cncc.frontend.interp import BlockContext, Interpreter
@@ -102,16 +102,16 @@ def _draw(it: Interpreter, ctx: BlockContext, cps: list[nurbs.CtrlPoint], order:
         return
     motion = ops.block_motion(it, ctx)
     segs = nurbs.biarcs(cps, order)
-    ctx.out.append(SetMode(ctx.span, it.frame, "nurbs_feed", (len(cps), order, len(segs))))
-    pos = it.pos
+    ctx.out.append(NurbsFeed(ctx.span, it.frame, len(cps), order, len(segs)))
+    pos, origin = it.pos, Origin(OriginKind.CURVE, code)
     for s in segs:
         end: Vec6 = (s.end[0], s.end[1], pos[2], pos[3], pos[4], pos[5])
         if s.center is None:
-            ctx.out.append(Linear(ctx.span, it.frame, pos, end, feed, motion, code))
+            ctx.out.append(Linear(ctx.span, it.frame, pos, end, feed, motion, origin))
         else:
             centre: Vec6 = (s.center[0], s.center[1], pos[2], pos[3], pos[4], pos[5])
             ctx.out.append(Arc(ctx.span, it.frame, pos, end, centre, 1 if s.ccw else -1, Plane.XY, feed, motion,
-                               code))
+                               origin))
         pos = end
     last = cps[-1]
     it.pos = (last[0], last[1], pos[2], pos[3], pos[4], pos[5])

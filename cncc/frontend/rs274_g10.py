@@ -19,7 +19,7 @@ from typing import TYPE_CHECKING
 from cncc import diagnostics as dg
 from cncc.dialects import CodeDef
 from cncc.frontend.ops import AXES
-from cncc.ir import SetMode, Vec6
+from cncc.ir import SetWorkSystem, SetXyRotation, Vec6, WriteToolTable, WriteWorkTable
 
 if TYPE_CHECKING:
     from cncc.frontend.interp import BlockContext, Interpreter
@@ -76,8 +76,7 @@ def _tool_entry(it: Interpreter, ctx: BlockContext, table: int, tool: int) -> No
             lengths[tool] = machine_z - base - z
     if rw is not None:
         radii[tool] = abs(it.reader.length_mm(rw))
-    ctx.out.append(SetMode(ctx.span, it.frame, "tool_table", (tool, lengths.get(tool, 0.0),
-                                                               2.0 * radii.get(tool, 0.0))))
+    ctx.out.append(WriteToolTable(ctx.span, it.frame, tool, lengths.get(tool, 0.0), 2.0 * radii.get(tool, 0.0)))
 
 
 def _work_entry(it: Interpreter, ctx: BlockContext, table: int, index: int) -> None:
@@ -98,7 +97,7 @@ def _work_entry(it: Interpreter, ctx: BlockContext, table: int, index: int) -> N
         _rotated_l20(it, ctx, index, old, vals)
     new: Vec6 = (vals[0], vals[1], vals[2], vals[3], vals[4], vals[5])
     it.options.work_offsets_mm[index] = new
-    ctx.out.append(SetMode(ctx.span, it.frame, "work_table", (index, old, new)))  # translation writes it (G10)
+    ctx.out.append(WriteWorkTable(ctx.span, it.frame, index, old, new))  # translation writes it (G10)
     rw = ctx.words.get("R")
     if rw is not None and table == 2:
         from cncc.frontend.rs274_state import state
@@ -107,8 +106,8 @@ def _work_entry(it: Interpreter, ctx: BlockContext, table: int, index: int) -> N
     if f.work_index == index:  # LinuxCNC reports the active system's offsets and rotation, changed or not
         if new != f.work_offset_mm:
             it.set_frame(replace(f, work_offset_mm=new))
-        ctx.out.append(SetMode(ctx.span, it.frame, "g5x_offset", index))
-        ctx.out.append(SetMode(ctx.span, it.frame, "xy_rotation", rotation_deg(it, index)))
+        ctx.out.append(SetWorkSystem(ctx.span, it.frame, index))
+        ctx.out.append(SetXyRotation(ctx.span, it.frame, rotation_deg(it, index)))
 
 
 def _rotated_l20(it: Interpreter, ctx: BlockContext, index: int, old: Vec6, vals: list[float]) -> None:

@@ -8,7 +8,7 @@ back toward the start (the stand-alone canon's back-off).  The result parameters
 #5061-#5069 hold the end point in program coordinates and #5070 is 0 (not tripped); the
 LinuxCNC executor writes them before the next block (:func:`take_result`).
 
-In the IR a probe is ``SetMode("probe", (end, op, moves))`` (``op``: ``probe_toward`` ...) followed by ``moves``
+In the IR a probe is ``Probe(end, op, moves)`` (``op``: ``probe_toward`` ...) followed by ``moves``
 (1 or 2) ``Linear`` commands: the probe move, and the back-off when it has a length.
 The canon backend prints one ``STRAIGHT_PROBE`` for the marker (LinuxCNC: between
 ``TURN_PROBE_ON()`` and ``TURN_PROBE_OFF()``); the G-code writer writes the probe code
@@ -28,7 +28,7 @@ from typing import TYPE_CHECKING
 from cncc import diagnostics as dg
 from cncc.dialects import CodeDef
 from cncc.frontend import registry
-from cncc.ir import CompSide, FeedRate, Linear, SetMode, Vec6
+from cncc.ir import CompSide, FeedRate, Linear, Origin, OriginKind, Probe, Vec6
 
 if TYPE_CHECKING:
     from cncc.frontend.interp import BlockContext, Interpreter
@@ -101,10 +101,10 @@ def _probe(it: Interpreter, ctx: BlockContext, end: Vec6, op: str, code: str) ->
         s = BACKOFF_MM / dist
         after = (end[0] + d[0] * s, end[1] + d[1] * s, end[2] + d[2] * s, end[3], end[4], end[5])
     moves = 2 if after != end else 1
-    ctx.out.append(SetMode(ctx.span, it.frame, "probe", (end, op, moves)))
-    ctx.out.append(Linear(ctx.span, it.frame, start, end, feed_mm, motion, code))
+    ctx.out.append(Probe(ctx.span, it.frame, end, op, moves))
+    ctx.out.append(Linear(ctx.span, it.frame, start, end, feed_mm, motion, Origin(OriginKind.PROBE, code)))
     if moves == 2:
-        ctx.out.append(Linear(ctx.span, it.frame, end, after, feed_mm, motion, f"{code} back-off"))
+        ctx.out.append(Linear(ctx.span, it.frame, end, after, feed_mm, motion, Origin(OriginKind.PROBE_BACKOFF, code)))
     it.pos = after
     _state(it).result = (end[0] / k, end[1] / k, end[2] / k, end[3], end[4], end[5], 0.0, 0.0, 0.0, 0.0)
 

@@ -1,14 +1,14 @@
 """LinuxCNC's spindle-synchronised motion: ``G33`` and ``G33.1`` rigid tapping.
 
 ``G33 X.. Z.. K..``: a straight move whose axes follow the spindle, K the distance per
-revolution.  In the IR it is the move between ``SetMode("spindle_sync", K mm)`` and
-``SetMode("spindle_sync", 0.0)`` (the representation the tapping cycles use), its
+revolution.  In the IR it is the move between ``SpindleSync(K mm)`` and
+``SpindleSync(0.0)`` (the representation the tapping cycles use), its
 feed the nominal ``rpm x |K|``.
 
 ``G33.1 X.. Y.. Z.. K..``: rigid tapping.  The tool feeds to the end point
 synchronised, the spindle reverses, the tool comes back to where it started and the
 spindle turns forward again.  In the IR: the synchronisation marks around
-``SetMode("rigid_tap", (end, 4))``, a feed in, a spindle reversal, a feed out and the
+``RigidTap(end, 4)``, a feed in, a spindle reversal, a feed out and the
 spindle restored; the canon backend prints LinuxCNC's single ``RIGID_TAP(x, y, z)``
 for the marker when the dialect's ``[canon]`` has it.  The tool ends at the start.
 
@@ -24,7 +24,7 @@ from cncc.dialects import CodeDef
 from cncc.frontend import ops
 from cncc.frontend.cycles import spindle_state
 from cncc.frontend.rs274_g10 import controller_error
-from cncc.ir import Linear, SetMode, Spindle, SpindleState, Vec6
+from cncc.ir import Linear, Origin, OriginKind, RigidTap, Spindle, SpindleState, SpindleSync, Vec6
 
 if TYPE_CHECKING:
     from cncc.frontend.interp import BlockContext, Interpreter
@@ -60,9 +60,10 @@ def _g33(it: Interpreter, ctx: BlockContext, end: Vec6) -> None:
     if pitch is None:
         return
     feed = it.modal.spindle_rpm * abs(pitch)
-    ctx.out.append(SetMode(ctx.span, it.frame, "spindle_sync", pitch))
-    ctx.out.append(Linear(ctx.span, it.frame, it.pos, end, feed, ops.block_motion(it, ctx), "G33"))
-    ctx.out.append(SetMode(ctx.span, it.frame, "spindle_sync", 0.0))
+    ctx.out.append(SpindleSync(ctx.span, it.frame, pitch))
+    origin = Origin(OriginKind.SYNC, "G33")
+    ctx.out.append(Linear(ctx.span, it.frame, it.pos, end, feed, ops.block_motion(it, ctx), origin))
+    ctx.out.append(SpindleSync(ctx.span, it.frame, 0.0))
     it.pos = end
 
 
@@ -74,10 +75,11 @@ def _g33_1(it: Interpreter, ctx: BlockContext, end: Vec6) -> None:
     reverse = SpindleState.CCW if forward is SpindleState.CW else SpindleState.CW
     rpm = it.modal.spindle_rpm
     feed, motion, start, f = rpm * abs(pitch), ops.block_motion(it, ctx), it.pos, it.frame
-    ctx.out += [SetMode(ctx.span, f, "spindle_sync", pitch), SetMode(ctx.span, f, "rigid_tap", (end, 4)),
-                Linear(ctx.span, f, start, end, feed, motion, "G33.1"), Spindle(ctx.span, f, reverse, rpm),
-                Linear(ctx.span, f, end, start, feed, motion, "G33.1"), Spindle(ctx.span, f, forward, rpm),
-                SetMode(ctx.span, f, "spindle_sync", 0.0)]
+    origin = Origin(OriginKind.SYNC, "G33.1")
+    ctx.out += [SpindleSync(ctx.span, f, pitch), RigidTap(ctx.span, f, end, 4),
+                Linear(ctx.span, f, start, end, feed, motion, origin), Spindle(ctx.span, f, reverse, rpm),
+                Linear(ctx.span, f, end, start, feed, motion, origin), Spindle(ctx.span, f, forward, rpm),
+                SpindleSync(ctx.span, f, 0.0)]
 
 
 ops.MOTIONS["spindle_sync_rs274"] = _g33

@@ -20,7 +20,7 @@ from typing import TYPE_CHECKING
 from cncc import diagnostics as dg
 from cncc.dialects import CodeDef
 from cncc.frontend import registry
-from cncc.ir import SetMode
+from cncc.ir import SetToolNumber
 
 if TYPE_CHECKING:
     from cncc.frontend.interp import BlockContext, Interpreter
@@ -44,4 +44,4 @@ def m61(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
             it, "tool_not_found", "Requested tool {0} not found in the tool table").replace("{0}", str(tool)))
         return
     it.modal = it.modal.with_(tool_loaded=tool)
-    ctx.out.append(SetMode(ctx.span, it.frame, "tool_number", tool))
+    ctx.out.append(SetToolNumber(ctx.span, it.frame, tool))

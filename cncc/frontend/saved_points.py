@@ -23,7 +23,7 @@ from typing import TYPE_CHECKING
 
 from cncc.dialects import CodeDef
 from cncc.frontend.ops import block_motion, handler
-from cncc.ir import Frame, Rapid, Vec6
+from cncc.ir import Frame, Origin, OriginKind, Rapid, Vec6
 
 if TYPE_CHECKING:
     from cncc.frontend.interp import BlockContext, Interpreter
@@ -58,7 +58,8 @@ def _return(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     for k in axes:
         end[k] = machine[k] - o[k]
     new: Vec6 = (end[0], end[1], end[2], end[3], end[4], end[5])
-    ctx.out.append(Rapid(ctx.span, it.frame, it.pos, new, block_motion(it, ctx), origin=c.name))
+    kind = OriginKind.RETURN_START if c.op == "return_start" else OriginKind.RETURN_SAVED
+    ctx.out.append(Rapid(ctx.span, it.frame, it.pos, new, block_motion(it, ctx), Origin(kind, c.name)))
     it.pos = new
     it.release_axes(axes)
 

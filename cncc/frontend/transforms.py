@@ -1,6 +1,6 @@
 """Front-end handlers of the frame and compensation codes.
 
-Consumes the blocks' words; produces frame changes (and ``SetMode`` records) that the
+Consumes the blocks' words; produces frame changes (and mode records) that the
 passes in :mod:`cncc.passes` apply later:
 
 * G15/G16 polar coordinates (resolved here, see below), G50/G51 scaling and SZGH
@@ -28,7 +28,20 @@ from cncc.dialects import CodeDef
 from cncc.frontend.ops import AXES, BLOCK_HOOKS, handler
 from cncc.frontend.polar import polar_target
 from cncc.frontend.run_state import TransformState
-from cncc.ir import CompSide, SetMode, Vec6
+from cncc.ir import (
+    CompSide,
+    SetCutterComp,
+    SetMirror,
+    SetPolar,
+    SetRotation,
+    SetScaling,
+    SetToolLength,
+    SetWorkSystem,
+    ToolData,
+    Vec6,
+    WriteToolData,
+    WriteWorkTable,
+)
 from cncc.ir.frame import Mirror, Polar, Rotation, Scaling
 
 if TYPE_CHECKING:
@@ -76,14 +89,14 @@ def _polar_on(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     st.polar_radius_mm = math.hypot(it.pos[i] - origin[0], it.pos[j] - origin[1])
     st.polar_angle_deg = math.degrees(math.atan2(it.pos[j] - origin[1], it.pos[i] - origin[0]))
     it.set_frame(replace(it.frame, polar=Polar(plane, origin)))
-    ctx.out.append(SetMode(ctx.span, it.frame, "polar", origin))
+    ctx.out.append(SetPolar(ctx.span, it.frame, origin))
 
 
 @handler("polar_off")
 def _polar_off(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     if it.frame.polar is not None:
         it.set_frame(replace(it.frame, polar=None))
-        ctx.out.append(SetMode(ctx.span, it.frame, "polar", None))
+        ctx.out.append(SetPolar(ctx.span, it.frame, None))
 
 
 # ---- scaling (G50/G51, SZGH G36/G37) -------------------------------------------------------
@@ -133,7 +146,7 @@ def _scale_apply(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
         return
     scaling = Scaling((center[0], center[1], center[2]), (factors[0], factors[1], factors[2]))
     it.set_frame(replace(it.frame, scaling=scaling))
-    ctx.out.append(SetMode(ctx.span, it.frame, "scaling", scaling))
+    ctx.out.append(SetScaling(ctx.span, it.frame, scaling))
 
 
 @handler("scale_off")
@@ -147,10 +160,10 @@ def _scale_off(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
 def _scale_cancel(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     if it.frame.scaling is not None:
         it.set_frame(replace(it.frame, scaling=None))
-        ctx.out.append(SetMode(ctx.span, it.frame, "scaling", None))
+        ctx.out.append(SetScaling(ctx.span, it.frame, None))
     if c.name == "G50" and it.dialect.option("g50_cancels_mirror", False) and it.frame.mirror is not None:
         it.set_frame(replace(it.frame, mirror=None))  # SYNTEC A-48: the manual's screenshot shows it
-        ctx.out.append(SetMode(ctx.span, it.frame, "mirror", None))
+        ctx.out.append(SetMirror(ctx.span, it.frame, None))
 
 
 # ---- mirror (G50.1/G51.1, SZGH G11/G12) ----------------------------------------------------
@@ -167,7 +180,7 @@ def _mirror_on(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
         axes[k] = True
     mirror = Mirror((center[0], center[1], center[2]), (axes[0], axes[1], axes[2]))
     it.set_frame(replace(it.frame, mirror=mirror))
-    ctx.out.append(SetMode(ctx.span, it.frame, "mirror", mirror))
+    ctx.out.append(SetMirror(ctx.span, it.frame, mirror))
 
 
 @handler("mirror_off")
@@ -180,7 +193,7 @@ def _mirror_off(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     axes = tuple(False if (not named or k in named) else old.axes[k] for k in range(3))
     mirror = Mirror(old.center_mm, (axes[0], axes[1], axes[2])) if any(axes) else None
     it.set_frame(replace(it.frame, mirror=mirror))
-    ctx.out.append(SetMode(ctx.span, it.frame, "mirror", mirror))
+    ctx.out.append(SetMirror(ctx.span, it.frame, mirror))
 
 
 # ---- rotation (G68/G69) ------------------------------------------------------------------
@@ -207,14 +220,14 @@ def _rotate_on(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
             angle += old.angle_deg
     rotation = Rotation(plane, center, angle)
     it.set_frame(replace(it.frame, rotation=rotation))
-    ctx.out.append(SetMode(ctx.span, it.frame, "rotation", rotation))
+    ctx.out.append(SetRotation(ctx.span, it.frame, rotation))
 
 
 @handler("rotate_off")
 def _rotate_off(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     if it.frame.rotation is not None:
         it.set_frame(replace(it.frame, rotation=None))
-        ctx.out.append(SetMode(ctx.span, it.frame, "rotation", None))
+        ctx.out.append(SetRotation(ctx.span, it.frame, None))
 
 
 # ---- cutter radius compensation (G40/G41/G42) -----------------------------------------------
@@ -236,7 +249,7 @@ def _comp(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     if c.op == "comp_off":
         if it.frame.comp_side is not CompSide.OFF:
             it.set_frame(replace(it.frame, comp_side=CompSide.OFF, comp_radius_mm=0.0))
-            ctx.out.append(SetMode(ctx.span, it.frame, "cutter_comp", CompSide.OFF))
+            ctx.out.append(SetCutterComp(ctx.span, it.frame, CompSide.OFF))
         return
     dw = ctx.words.get("D")
     index = it.frame.comp_index or st.d_index
@@ -262,7 +275,7 @@ def _set_comp(it: Interpreter, ctx: BlockContext, op: str, index: int) -> None:
     f = it.frame
     if (side, radius, index) != (f.comp_side, f.comp_radius_mm, f.comp_index):
         it.set_frame(replace(f, comp_side=side, comp_radius_mm=radius, comp_index=index))
-        ctx.out.append(SetMode(ctx.span, it.frame, "cutter_comp", side))
+        ctx.out.append(SetCutterComp(ctx.span, it.frame, side))
 
 
 # ---- tool length (G43/G44/G49) ---------------------------------------------------------------
@@ -293,7 +306,7 @@ def _set_length(it: Interpreter, ctx: BlockContext, op: str, index: int) -> None
     f = it.frame
     if (value, index, axis) != (f.tool_length_mm, f.tool_length_index, f.tool_length_axis):
         it.set_frame(replace(f, tool_length_mm=value, tool_length_index=index, tool_length_axis=axis))
-        ctx.out.append(SetMode(ctx.span, it.frame, "tool_length_offset", value))
+        ctx.out.append(SetToolLength(ctx.span, it.frame, value))
 
 
 def _lone_words(it: Interpreter, ctx: BlockContext) -> None:
@@ -350,7 +363,7 @@ def _g10_tool(it: Interpreter, ctx: BlockContext, c: CodeDef, table: str, entry:
               "radius": it.options.tool_radii_mm, "radius_wear": st.radius_wear_mm}[table]
     value = it.reader.length_mm(rw)
     target[entry] = target.get(entry, 0.0) + value if it.modal.incremental else value
-    ctx.out.append(SetMode(ctx.span, it.frame, "data_input", (table, entry, target[entry])))
+    ctx.out.append(WriteToolData(ctx.span, it.frame, ToolData(table), entry, target[entry]))
 
 
 def _g10_work(it: Interpreter, ctx: BlockContext, c: CodeDef, index: int) -> None:
@@ -366,10 +379,10 @@ def _g10_work(it: Interpreter, ctx: BlockContext, c: CodeDef, index: int) -> Non
             vals[k] = vals[k] + v if it.modal.incremental else v
     new: Vec6 = (vals[0], vals[1], vals[2], vals[3], vals[4], vals[5])
     it.options.work_offsets_mm[index] = new
-    ctx.out.append(SetMode(ctx.span, it.frame, "work_table", (index, old, new)))  # translation writes it (G10)
+    ctx.out.append(WriteWorkTable(ctx.span, it.frame, index, old, new))  # translation writes it (G10)
     if it.frame.work_index == index and new != it.frame.work_offset_mm:
         it.set_frame(replace(it.frame, work_offset_mm=new))
-        ctx.out.append(SetMode(ctx.span, it.frame, "g5x_offset", index))
+        ctx.out.append(SetWorkSystem(ctx.span, it.frame, index))
 
 
 # ---- SZGH G45-G48 tool offsets ---------------------------------------------------------------

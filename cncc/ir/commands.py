@@ -14,19 +14,51 @@ from __future__ import annotations
 
 import enum
 from dataclasses import dataclass, field
-from typing import Any
 
 from cncc.ir.css import Css
 from cncc.ir.frame import Frame, Plane, Vec6
+from cncc.ir.modes import ModeCommand
+from cncc.ir.pathmode import PathMode as PathMode  # re-exported: motions name it
 from cncc.source import Span
 
 
-class PathMode(enum.Enum):
-    """How a motion ends: blend into the next or stop exactly (G61/G09)."""
+class OriginKind(enum.Enum):
+    """Why a move exists, where that changes how passes and backends treat it."""
 
-    CONTINUOUS = "continuous"  # G64: blend within the tolerance
-    EXACT_STOP = "exact-stop"  # G61/G09: decelerate to zero at the end
-    EXACT_PATH = "exact-path"  # G61.1-like: stay on the path, no stop required
+    PROGRAM = "program"  # an ordinary programmed move
+    MACHINE = "machine"  # G53: in machine coordinates, transforms leave it alone
+    CYCLE = "cycle"  # a move of a canned cycle (``code`` the cycle code)
+    CURVE = "curve"  # a piece of a NURBS / spline (G5.x)
+    SYNC = "sync"  # spindle-synchronised (G33, G33.1)
+    HOME = "home"  # a reference-return leg in program terms (G28/G30 to the intermediate point, G29)
+    REFERENCE = "reference"  # the leg to the reference position: no transform applies to it
+    CODE = "code"  # made by a code of its own that is none of these (SERIES 8 G06 oscillation)
+    RETURN_START = "return_start"  # SZGH G26/G261-G265: back to the program's start point
+    RETURN_SAVED = "return_saved"  # SZGH G61x: back to the point saved by G25
+    PROBE = "probe"  # LinuxCNC G38.x: the probe move (``code`` the probe code)
+    PROBE_BACKOFF = "probe_backoff"  # the stand-alone interpreter's back-off after a G38.x probe move
+
+
+@dataclass(frozen=True, slots=True)
+class Origin:
+    """The origin of a move: its kind and the code as programmed that made it ("" for ordinary moves)."""
+
+    kind: OriginKind = OriginKind.PROGRAM
+    code: str = ""
+
+    @property
+    def programmed(self) -> bool:
+        """An ordinary programmed move (no code of its own made it)."""
+        return self.kind is OriginKind.PROGRAM
+
+    @property
+    def in_machine_terms(self) -> bool:
+        """G53 and reference legs: in machine terms, no programmable transform applies."""
+        return self.kind is OriginKind.MACHINE or self.kind is OriginKind.REFERENCE
+
+
+PROGRAMMED = Origin()
+MACHINE_ORIGIN = Origin(OriginKind.MACHINE, "G53")
 
 
 @dataclass(frozen=True, slots=True)
@@ -50,7 +82,7 @@ class Rapid:
     start: Vec6
     end: Vec6
     motion: Motion = DEFAULT_MOTION
-    origin: str = ""  # e.g. "G28", "cycle" - why the rapid exists (for reports)
+    origin: Origin = PROGRAMMED  # why the move exists (G53, a reference return, a cycle ...)
 
 
 @dataclass(frozen=True, slots=True)
@@ -61,7 +93,7 @@ class Linear:
     end: Vec6
     feed_mm_min: float  # path feed in mm/min (per-rev feeds resolved by `motion.per_rev`)
     motion: Motion = DEFAULT_MOTION
-    origin: str = ""
+    origin: Origin = PROGRAMMED
 
 
 @dataclass(frozen=True, slots=True)
@@ -82,7 +114,7 @@ class Arc:
     plane: Plane
     feed_mm_min: float
     motion: Motion = DEFAULT_MOTION
-    origin: str = ""
+    origin: Origin = PROGRAMMED
 
 
 @dataclass(frozen=True, slots=True)
@@ -186,19 +218,6 @@ class Message:
 
 
 @dataclass(frozen=True, slots=True)
-class SetMode:
-    """A modal change with no motion that downstream stages may report (units, plane...).
-
-    ``name`` is a canonical operation name, ``value`` its argument.
-    """
-
-    span: Span
-    frame: Frame
-    name: str
-    value: Any = None
-
-
-@dataclass(frozen=True, slots=True)
 class Aux:
     """An auxiliary M function with no modelled effect (e.g. M19 orient, user M codes)."""
 
@@ -218,8 +237,24 @@ class Wait:
     seconds: float = 0.0
 
 
-class CycleKind(enum.Enum):
-    """Canned cycle kinds; the values are the ``cycle`` names of the dialect tables."""
+class CycleKindBase(enum.Enum):
+    """A canned cycle kind (no members of its own): the core kinds are :class:`CycleKind`; a
+    dialect layer with cycles of its own defines an enum deriving from this one
+    (``cncc/dialects/series8_cycles.py``).  The values are the ``cycle`` names of the dialect tables."""
+
+
+def cycle_kind(name: str) -> CycleKindBase | None:
+    """The cycle kind a dialect table names, among the kind enums defined (imported) so far."""
+    for kinds in CycleKindBase.__subclasses__():
+        try:
+            return kinds(name)
+        except ValueError:
+            continue
+    return None
+
+
+class CycleKind(CycleKindBase):
+    """The canned cycle kinds every dialect may use (the Fanuc family's and LinuxCNC's)."""
 
     DRILL = "drill"  # G81
     DRILL_DWELL = "drill_dwell"  # G82
@@ -233,14 +268,6 @@ class CycleKind(enum.Enum):
     BACK_BORE = "back_bore"  # G87: cut upward from R to the bottom
     BORE_MANUAL = "bore_manual"  # G88: operator retracts by hand
     BORE_DWELL_FEED_OUT = "bore_dwell_feed_out"  # G89
-    # SERIES 8's own cycles (docs/dialects-notes.md; sequences in cncc/passes/series8_cycles.py)
-    PECK_FIRST = "peck_first"  # G83: first stroke to the level I, then pecks of J, back to R after each
-    BORE_DWELL_STOP_OUT = "bore_dwell_stop_out"  # G86: dwell, spindle stop, feed out to R
-    BORE_DWELL_STOP_RAPID_OUT = "bore_dwell_stop_rapid_out"  # G86 read as its title says (rapid out)
-    CASE_BORE = "case_bore"  # G87: rapid to R, feed to Z and stay at depth
-    BORE_ORIENT_OUT = "bore_orient_out"  # G88: dwell, orient, shift I J, feed out, shift back
-    BORE_ORIENT_RAPID_OUT = "bore_orient_rapid_out"  # G88 read as its title says (rapid out)
-    BACK_BORE_RETURN = "back_bore_return"  # G89: back bore that feeds back down to R before leaving
     # LinuxCNC 2.9's own sequences (rs274's interp_cycles; cncc/passes/linuxcnc_cycles.py)
     TAP_RS274 = "tap_rs274"  # G84: overrides off, feed in, reverse, dwell, feed out to the clear level
     TAP_LEFT_RS274 = "tap_left_rs274"  # G74: the same with the spindle turning counter-clockwise
@@ -264,7 +291,7 @@ class Cycle:
 
     span: Span
     frame: Frame
-    kind: CycleKind
+    kind: CycleKindBase
     code: str  # as programmed ("G81"), so translation can keep the cycle
     start: Vec6  # tool position before the first hole
     holes: tuple[Vec6, ...]
@@ -315,7 +342,7 @@ Command = (
     | Stop
     | Comment
     | Message
-    | SetMode
+    | ModeCommand
     | Aux
     | Wait
     | Cycle

@@ -9,7 +9,7 @@ plain-block fast path uses them; everything else constructs normally.
 
 from __future__ import annotations
 
-from cncc.ir.commands import Linear, Motion, Rapid
+from cncc.ir.commands import PROGRAMMED, Linear, Motion, Rapid
 from cncc.ir.frame import Frame, Vec6
 from cncc.source import Span
 
@@ -36,7 +36,7 @@ def new_linear(span: Span, frame: Frame, start: Vec6, end: Vec6, feed_mm_min: fl
     d(o, end)
     e(o, feed_mm_min)
     f(o, motion)
-    g(o, "")
+    g(o, PROGRAMMED)
     return o
 
 
@@ -48,5 +48,5 @@ def new_rapid(span: Span, frame: Frame, start: Vec6, end: Vec6, motion: Motion) 
     c(o, start)
     d(o, end)
     e(o, motion)
-    f(o, "")
+    f(o, PROGRAMMED)
     return o

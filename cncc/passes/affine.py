@@ -17,7 +17,7 @@ would cut:
 * **held axes**: after a cancel, axes in ``frame.held_axes`` (not named absolutely since)
   move by their programmed increment from where the tool actually is, so a block
   that does not name them leaves them where the transform put them;
-* **bypass**: G53 moves and the second leg of G28/G30 (origin ``"... ref"``) are in
+* **bypass**: G53 moves and the second leg of G28/G30 (origin kind ``REFERENCE``) are in
   machine terms and are not transformed.
 
 An arc's direction flips when ``L`` reverses orientation in the arc's plane; so does
@@ -153,7 +153,7 @@ class AffinePass(Pass):
     def _motion(self, c: Rapid | Linear | Arc, aff: Affine | None, nf: Frame, last: Vec6 | None,
                 ctx: PassContext) -> Rapid | Linear | Arc:
         start = c.start if last is None else sub_offsets(last, nf)
-        bypass = aff is None or ((c.origin == "G53" or c.origin.endswith(" ref")) and self.bypasses(c.frame))
+        bypass = aff is None or (c.origin.in_machine_terms and self.bypasses(c.frame))
         if bypass or aff is None:
             if start == c.start and nf is c.frame:
                 return c

@@ -34,7 +34,7 @@ from dataclasses import dataclass, field, replace
 from typing import ClassVar
 
 from cncc import diagnostics as dg
-from cncc.ir import Arc, Command, CompSide, Frame, Linear, Rapid, SetMode, Stop, Vec6
+from cncc.ir import Arc, Command, CompSide, Frame, Linear, OriginKind, Rapid, SetCutterComp, Stop, Vec6
 from cncc.ir.frame import add_offsets, sub_offsets
 from cncc.passes import Pass, PassContext, register
 from cncc.passes.comp_geometry import Pt
@@ -154,19 +154,19 @@ class _State:
     # ---- entry
     def feed(self, c: Command) -> Iterator[Command]:
         if not isinstance(c, Rapid | Linear | Arc):
-            if isinstance(c, SetMode | Stop) and (isinstance(c, Stop) or c.name == "cutter_comp"):
+            if isinstance(c, SetCutterComp | Stop):
                 if self.queue and self.cur is not None:  # G40: rs274 checks the queue where the tool is
                     last = self.queue[-1].cmd
                     with contextlib.suppress(_Stop):
                         yield from self._move_endpoint_and_flush(last, self._xy(last, self.cur))
                 yield from self.flush()
-                if isinstance(c, SetMode) and c.frame.comp_side is not CompSide.OFF and not self.on:
+                if isinstance(c, SetCutterComp) and c.frame.comp_side is not CompSide.OFF and not self.on:
                     self.first = True
             yield c if self._frame(c.frame) is c.frame else replace(c, frame=self._frame(c.frame))
             return
         f = c.frame
         comp = f.comp_side is not CompSide.OFF and f.comp_radius_mm > 0.0
-        special = c.origin == "G53" or c.origin[:3] in ("G28", "G30")
+        special = c.origin.kind in (OriginKind.MACHINE, OriginKind.HOME, OriginKind.REFERENCE)  # G53, G28/G30
         if not comp or special:
             if self.on:
                 yield from self.flush()

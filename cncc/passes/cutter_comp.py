@@ -41,7 +41,7 @@ from typing import ClassVar
 
 from cncc import diagnostics as dg
 from cncc.diagnostics import Related
-from cncc.ir import Arc, Command, CompSide, Cycle, Frame, Linear, Plane, Rapid, Vec6
+from cncc.ir import Arc, Command, CompSide, Cycle, Frame, Linear, OriginKind, Plane, Rapid, Vec6
 from cncc.ir.frame import add_offsets, sub_offsets
 from cncc.passes import Pass, PassContext, register
 from cncc.passes.comp_geometry import (
@@ -124,7 +124,7 @@ def _with_plane(p: Vec6, plane: Plane, q: Pt) -> Vec6:
 def _suspends(c: Command) -> bool:
     """Moves in machine terms (G53, reference returns) and unexpanded cycles run uncompensated."""
     if isinstance(c, Rapid | Linear | Arc):
-        return c.origin == "G53" or c.origin[:3] in ("G28", "G29", "G30")
+        return c.origin.kind in (OriginKind.MACHINE, OriginKind.HOME, OriginKind.REFERENCE)
     return hasattr(c, "holes")
 
 

@@ -20,11 +20,13 @@ from cncc.ir import (
     Dwell,
     Linear,
     Motion,
+    Origin,
+    OriginKind,
     PathMode,
     Rapid,
-    SetMode,
     Spindle,
     SpindleState,
+    SpindleSync,
     Vec6,
     Wait,
 )
@@ -39,6 +41,7 @@ class CyclePath:
         self.pos: Vec6 = c.start
         self.hole: Vec6 = c.start
         self.motion: Motion = replace(c.motion, mode=PathMode.EXACT_STOP)
+        self.origin = Origin(OriginKind.CYCLE, c.code)
         running = c.spindle in (SpindleState.CW, SpindleState.CCW)
         default = SpindleState.CCW if c.kind in (CycleKind.TAP_LEFT, CycleKind.TAP_LEFT_RS274) else SpindleState.CW
         self.forward = c.spindle if running else default
@@ -59,7 +62,7 @@ class CyclePath:
         f = self.frame
         if p == self.pos and f.scaling is None and f.mirror is None and f.rotation is None and not f.after_cancel:
             return
-        self.out.append(Rapid(self.c.span, self.frame, self.pos, p, self.motion, self.c.code))
+        self.out.append(Rapid(self.c.span, self.frame, self.pos, p, self.motion, self.origin))
         self.pos = p
 
     def at(self, level: float, shifted: bool = False) -> Vec6:
@@ -71,13 +74,13 @@ class CyclePath:
 
     def rapid(self, p: Vec6) -> None:
         if p != self.pos:
-            self.out.append(Rapid(self.c.span, self.frame, self.pos, p, self.motion, self.c.code))
+            self.out.append(Rapid(self.c.span, self.frame, self.pos, p, self.motion, self.origin))
             self.pos = p
 
     def feed(self, p: Vec6) -> None:
         if p != self.pos:
             c = self.c
-            self.out.append(Linear(c.span, self.frame, self.pos, p, c.feed_mm_min, self.motion, c.code))
+            self.out.append(Linear(c.span, self.frame, self.pos, p, c.feed_mm_min, self.motion, self.origin))
             self.pos = p
 
     def lift(self, p: Vec6) -> None:
@@ -97,7 +100,7 @@ class CyclePath:
         return SpindleState.CCW if self.forward is SpindleState.CW else SpindleState.CW
 
     def sync(self, pitch_mm: float) -> None:
-        self.out.append(SetMode(self.c.span, self.c.frame, "spindle_sync", pitch_mm))
+        self.out.append(SpindleSync(self.c.span, self.c.frame, pitch_mm))
 
     def wait(self, what: str) -> None:
         self.out.append(Wait(self.c.span, self.c.frame, what))

@@ -9,8 +9,8 @@ per hole, the moves the controller makes, in the cycle's own frame:
 * the cycle's in-feed, bottom action and retract (table in ``docs/cycles.md``);
 * every move has the exact-stop path mode and ``origin`` set to the cycle code.
 
-Tapping moves are bracketed by ``SetMode("spindle_sync", pitch_mm)`` and
-``SetMode("spindle_sync", 0.0)``: in between, the feed axis follows the spindle
+Tapping moves are bracketed by ``SpindleSync(pitch_mm)`` and
+``SpindleSync(0.0)``: in between, the feed axis follows the spindle
 (feed = rpm x pitch, overrides locked at 100 %).  Spindle reversals, stops, orients
 and restarts are :class:`Spindle` commands; the G88 manual retract is a :class:`Wait`.
 Other zero-length moves are left out (a G99 hole starts at R already).
@@ -27,6 +27,9 @@ from cncc.ir import (
     Command,
     Cycle,
     CycleKind,
+    CycleKindBase,
+    Origin,
+    OriginKind,
     Rapid,
     SpindleState,
 )
@@ -62,7 +65,7 @@ def expand(c: Cycle) -> list[Command]:
         path.frame = c.frame
         over = path.at(path.pos[c.axis])
         if c.zero_moves and over == path.pos:  # rs274 prints the move even when it has no length
-            path.out.append(Rapid(c.span, c.frame, over, over, path.motion, c.code))
+            path.out.append(Rapid(c.span, c.frame, over, over, path.motion, Origin(OriginKind.CYCLE, c.code)))
         else:
             path.position(over)
         path.frame = path.levels_frame
@@ -192,7 +195,7 @@ def _manual(p: _Path) -> None:
     p.spindle(p.forward)
 
 
-SEQUENCES: dict[CycleKind, Sequence] = {
+SEQUENCES: dict[CycleKindBase, Sequence] = {
     CycleKind.DRILL: _drill,
     CycleKind.DRILL_DWELL: _drill,
     CycleKind.PECK_HIGH_SPEED: _peck_high_speed,

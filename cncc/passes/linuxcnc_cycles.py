@@ -16,22 +16,22 @@ is above the hole at R.  Every move is made even when it has no length (rs274 pr
 
 from __future__ import annotations
 
-from cncc.ir import CycleKind, Dwell, Linear, Rapid, SetMode, SpindleState, Stop, StopKind, Vec6
+from cncc.ir import CycleKind, CycleKindBase, Dwell, Linear, Rapid, SetOverrides, SpindleState, Stop, StopKind, Vec6
 from cncc.passes.cycle_path import CyclePath as _Path
 from cncc.passes.cycle_path import Sequence
 
-SEQUENCES: dict[CycleKind, Sequence] = {}  # this module's kinds (expand_cycles.SEQUENCES merges them)
+SEQUENCES: dict[CycleKindBase, Sequence] = {}  # this module's kinds (expand_cycles.SEQUENCES merges them)
 
 
 def _feed(p: _Path, q: Vec6) -> None:
     c = p.c
-    p.out.append(Linear(c.span, c.frame, p.pos, q, c.feed_mm_min, p.motion, c.code))
+    p.out.append(Linear(c.span, c.frame, p.pos, q, c.feed_mm_min, p.motion, p.origin))
     p.pos = q
 
 
 def _rapid(p: _Path, q: Vec6) -> None:
     c = p.c
-    p.out.append(Rapid(c.span, c.frame, p.pos, q, p.motion, c.code))
+    p.out.append(Rapid(c.span, c.frame, p.pos, q, p.motion, p.origin))
     p.pos = q
 
 
@@ -42,7 +42,7 @@ def _dwell(p: _Path) -> None:
 def _tap(p: _Path) -> None:
     c = p.c
     p.rapid(p.at(c.r_mm))
-    p.out.append(SetMode(c.span, c.frame, "overrides", False))
+    p.out.append(SetOverrides(c.span, c.frame, False))
     _feed(p, p.at(c.bottom_mm))
     p.spindle(SpindleState.OFF)
     p.spindle(p.reverse())
@@ -50,7 +50,7 @@ def _tap(p: _Path) -> None:
     _feed(p, p.at(c.retract_mm))
     p.spindle(SpindleState.OFF)
     p.spindle(p.forward)
-    p.out.append(SetMode(c.span, c.frame, "overrides", True))
+    p.out.append(SetOverrides(c.span, c.frame, True))
 
 
 def _feed_out(p: _Path) -> None:

@@ -18,11 +18,12 @@ absolute, every hole ends at R except G87 and G89):
 
 from __future__ import annotations
 
-from cncc.ir import CycleKind, SpindleState
+from cncc.dialects.series8_cycles import Series8CycleKind
+from cncc.ir import CycleKindBase, SpindleState
 from cncc.passes.cycle_path import CyclePath as _Path
 from cncc.passes.cycle_path import Sequence
 
-SEQUENCES: dict[CycleKind, Sequence] = {}  # this module's kinds (expand_cycles.SEQUENCES merges them)
+SEQUENCES: dict[CycleKindBase, Sequence] = {}  # this module's kinds (expand_cycles.SEQUENCES merges them)
 
 
 def first_peck_depths(r_mm: float, bottom_mm: float, first_mm: float | None, peck_mm: float) -> list[float]:
@@ -56,7 +57,7 @@ def _stop_out(p: _Path) -> None:
     p.feed(p.at(c.bottom_mm))
     p.dwell()
     p.spindle(SpindleState.OFF)
-    (p.rapid if c.kind is CycleKind.BORE_DWELL_STOP_RAPID_OUT else p.feed)(p.at(c.r_mm))
+    (p.rapid if c.kind is Series8CycleKind.BORE_DWELL_STOP_RAPID_OUT else p.feed)(p.at(c.r_mm))
     p.spindle(p.forward)
     p.rapid(p.at(c.retract_mm))
 
@@ -74,7 +75,7 @@ def _orient_out(p: _Path) -> None:
     p.dwell()
     p.spindle(SpindleState.ORIENT)
     p.rapid(p.at(c.bottom_mm, shifted=True))
-    (p.rapid if c.kind is CycleKind.BORE_ORIENT_RAPID_OUT else p.feed)(p.at(c.r_mm, shifted=True))
+    (p.rapid if c.kind is Series8CycleKind.BORE_ORIENT_RAPID_OUT else p.feed)(p.at(c.r_mm, shifted=True))
     p.rapid(p.at(c.r_mm))
     p.spindle(p.forward)
     p.rapid(p.at(c.retract_mm))
@@ -98,11 +99,11 @@ def _back_bore_return(p: _Path) -> None:
 
 
 SEQUENCES.update({
-    CycleKind.PECK_FIRST: _peck_first,
-    CycleKind.BORE_DWELL_STOP_OUT: _stop_out,
-    CycleKind.BORE_DWELL_STOP_RAPID_OUT: _stop_out,
-    CycleKind.CASE_BORE: _case_bore,
-    CycleKind.BORE_ORIENT_OUT: _orient_out,
-    CycleKind.BORE_ORIENT_RAPID_OUT: _orient_out,
-    CycleKind.BACK_BORE_RETURN: _back_bore_return,
+    Series8CycleKind.PECK_FIRST: _peck_first,
+    Series8CycleKind.BORE_DWELL_STOP_OUT: _stop_out,
+    Series8CycleKind.BORE_DWELL_STOP_RAPID_OUT: _stop_out,
+    Series8CycleKind.CASE_BORE: _case_bore,
+    Series8CycleKind.BORE_ORIENT_OUT: _orient_out,
+    Series8CycleKind.BORE_ORIENT_RAPID_OUT: _orient_out,
+    Series8CycleKind.BACK_BORE_RETURN: _back_bore_return,
 })

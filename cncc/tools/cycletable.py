@@ -20,7 +20,7 @@ from pathlib import Path
 
 from cncc.api import compile_commands
 from cncc.dialects import CodeDef, available, load_dialect
-from cncc.ir import Command, Dwell, Linear, Rapid, SetMode, Spindle, SpindleState, Stop, Wait
+from cncc.ir import Command, Dwell, Linear, Rapid, Spindle, SpindleState, SpindleSync, Stop, Wait
 
 DOC = Path(__file__).resolve().parents[2] / "docs" / "cycles.md"
 BEGIN, END = "<!-- cycletable:begin -->", "<!-- cycletable:end -->"
@@ -73,7 +73,7 @@ def _describe(cmds: list[Command], back: bool) -> str:
     for c in cmds:
         match c:
             case Rapid() | Linear():
-                if c.origin == "":
+                if c.origin.programmed:
                     continue
                 cycle = True
                 kind = "rapid" if isinstance(c, Rapid) else "feed"
@@ -90,9 +90,9 @@ def _describe(cmds: list[Command], back: bool) -> str:
             case Spindle() if cycle:
                 words.append({SpindleState.CW: "spindle CW", SpindleState.CCW: "spindle CCW",
                               SpindleState.OFF: "spindle stop", SpindleState.ORIENT: "orient"}[c.state])
-            case SetMode(name="spindle_sync"):
+            case SpindleSync():
                 cycle = True
-                words.append(f"sync {c.value:g} mm/rev" if c.value else "sync off")
+                words.append(f"sync {c.pitch_mm:g} mm/rev" if c.pitch_mm else "sync off")
             case Wait():
                 words.append("operator retract")
             case Stop() if cycle:

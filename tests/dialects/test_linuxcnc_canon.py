@@ -132,13 +132,13 @@ def test_g33_spindle_synchronised_moves() -> None:
 
 
 def test_g33_ir_is_a_synchronised_linear_move() -> None:
-    from cncc.ir import Linear, SetMode
+    from cncc.ir import Linear, SpindleSync
 
     cmds, r = compile_commands("S500 M3\nG33 Z-10 K1.5\n", dialect="linuxcnc", **SNIPPET)
     assert r.ok
-    sync = [c for c in cmds if isinstance(c, SetMode | Linear)]
-    assert [(type(c).__name__, getattr(c, "value", None)) for c in sync] == [
-        ("SetMode", 1.5), ("Linear", None), ("SetMode", 0.0)]
+    sync = [c for c in cmds if isinstance(c, SpindleSync | Linear)]
+    assert [(type(c).__name__, getattr(c, "pitch_mm", None)) for c in sync] == [
+        ("SpindleSync", 1.5), ("Linear", None), ("SpindleSync", 0.0)]
     lin = sync[1]
     assert isinstance(lin, Linear) and lin.feed_mm_min == pytest.approx(500 * 1.5)  # rpm x pitch
 

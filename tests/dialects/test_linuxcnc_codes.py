@@ -11,7 +11,8 @@ from pathlib import Path
 import pytest
 
 from cncc.api import compile_text
-from tests.helpers import calls, canon, codes
+from cncc.ir import Linear, OriginKind, Probe, SetToolNumber
+from tests.helpers import calls, canon, codes, compile_commands
 
 LINUXCNC = "linuxcnc"
 
@@ -29,6 +30,18 @@ def test_probe_prints_straight_probe_and_backs_off_toward_the_start() -> None:
     assert got[1] == ("STRAIGHT_PROBE", [1, 2, -5, 0, 0, 0])
     # the tool ends 0.254 mm (the stand-alone canon's back-off) from the end point toward the start
     assert got[2] == ("STRAIGHT_FEED", [7, 2, pytest.approx(-5 + 0.254), 0, 0, 0])
+
+
+def test_probe_is_a_typed_marker_then_the_probe_move_and_its_back_off() -> None:
+    cmds, r = compile_commands("G21 F100\nG0 X1 Y2 Z3\nG38.2 Z-5\nM2\n", dialect=LINUXCNC)
+    assert not r.sink.has_errors
+    k = next(i for i, c in enumerate(cmds) if isinstance(c, Probe))
+    marker, move, back = cmds[k], cmds[k + 1], cmds[k + 2]
+    assert isinstance(marker, Probe) and marker.op == "probe_toward" and marker.folded == 2
+    assert marker.end == (1.0, 2.0, -5.0, 0.0, 0.0, 0.0)
+    assert isinstance(move, Linear) and move.origin.kind is OriginKind.PROBE and move.origin.code == "G38.2"
+    assert isinstance(back, Linear) and back.origin.kind is OriginKind.PROBE_BACKOFF
+    assert back.end[2] == pytest.approx(-5 + 0.254)  # the stand-alone canon's back-off toward the start
 
 
 def test_probe_result_parameters() -> None:
@@ -91,6 +104,12 @@ def test_spindle_word() -> None:
     for bad in ("G21\nS100 $1 M3\nM2\n", "G21\n$0\nM2\n", "G21\nM3 $2\nM2\n"):
         _, r = canon(bad, LINUXCNC)
         assert "E0250" in codes(r), bad
+
+
+def test_m61_is_a_typed_tool_number_command() -> None:
+    cmds, r = compile_commands("G21\nM61 Q3\nM2\n", dialect=LINUXCNC)
+    assert not r.sink.has_errors
+    assert [c.tool for c in cmds if isinstance(c, SetToolNumber)] == [3]
 
 
 # ---- M61 ----------------------------------------------------------------------------------------

@@ -273,11 +273,12 @@ def test_e001_18_css_facing_moves_and_records() -> None:
              if type(c).__name__ in ("Rapid", "Linear")]
     # a lathe program (G92 R S, G96): X is a diameter, the IR holds the radius
     assert kinds == [("Rapid", (4.0, 0.0, 0.0)), ("Linear", (-0.005, 0.0, 0.0)), ("Linear", (-0.005, 0.0, 0.1))]
-    ref = next(c for c in cmds if type(c).__name__ == "SetMode" and c.name == "css_reference")
-    assert ref.value == pytest.approx((4 * IN, 4 * IN))  # R4 at the current X (the G92 R S form, not a preset)
+    ref = next(c for c in cmds if type(c).__name__ == "SetCssReference")
+    # R4 at the current X (the G92 R S form, not a preset)
+    assert (ref.radius_mm, ref.x_mm) == pytest.approx((4 * IN, 4 * IN))
     speeds = [c.rpm for c in cmds if type(c).__name__ == "SpindleSpeed"]
     assert speeds == [300.0]  # S600 is the clamp of G92 R S, not a spindle speed
-    assert not any(type(c).__name__ == "SetMode" and c.name == "g92_offset" for c in cmds)
+    assert not any(type(c).__name__ == "SetG92Offset" for c in cmds)
     # The initial and top speeds the spec derives: 300 ft/min on a 4 in radius, 600 rpm below r*.
     assert 300 * 12 / (2 * math.pi * 4) == pytest.approx(143.24, abs=0.01)
     assert 3600 / (2 * math.pi * 600) == pytest.approx(0.954930, abs=1e-6)

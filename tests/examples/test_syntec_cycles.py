@@ -102,18 +102,18 @@ def test_e000_43_g74_left_hand_tapping() -> None:
 
 def test_e000_43_g74_spindle_sync_in_ir() -> None:
     from cncc.api import compile_commands
-    from cncc.ir import Linear, SetMode
+    from cncc.ir import Linear, SpindleSync
 
     cmds, r = compile_commands(program("G74 X5. Y5. Z-10. R-5. P2.;", True, m="M04;\n"))
     assert r.ok
-    syncs = [c.value for c in cmds if isinstance(c, SetMode) and c.name == "spindle_sync"]
+    syncs = [c.pitch_mm for c in cmds if isinstance(c, SpindleSync)]
     assert syncs == [2.0, 0.0] * 5  # pitch F/S = 1000/500 mm/rev on, then off, per hole
     inside = False
     for c in cmds:
-        if isinstance(c, SetMode) and c.name == "spindle_sync":
-            inside = bool(c.value)
+        if isinstance(c, SpindleSync):
+            inside = bool(c.pitch_mm)
         elif isinstance(c, Linear):
-            assert inside and c.origin == "G74"
+            assert inside and c.origin.code == "G74"
 
 
 def test_e000_44_g76_fine_boring_shift_along_pr4020() -> None:
@@ -280,11 +280,11 @@ def test_g18_drills_along_y() -> None:
 
 def test_g95_tapping_pitch_is_f() -> None:
     from cncc.api import compile_commands
-    from cncc.ir import Cycle, Linear, SetMode
+    from cncc.ir import Cycle, Linear, SpindleSync
 
     cmds, r = compile_commands("S600 M03;\nG00 X0 Y0 Z10.;\nG95 G84 X5. Z-10. R-5. F1.25;\nG80;\nM02;\n")
     assert r.ok
     assert not any(isinstance(c, Cycle) for c in cmds)  # expanded by the pass
 
-    assert [c.value for c in cmds if isinstance(c, SetMode) and c.name == "spindle_sync"] == [1.25, 0.0]
+    assert [c.pitch_mm for c in cmds if isinstance(c, SpindleSync)] == [1.25, 0.0]
     assert [c.feed_mm_min for c in cmds if isinstance(c, Linear)] == pytest.approx([750.0, 750.0])  # 600 rpm x 1.25

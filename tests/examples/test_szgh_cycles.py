@@ -83,12 +83,12 @@ def test_e002_28_g74_left_hand_tap_feed_s_times_k() -> None:
     want = frame(holes, hole, -100.0, first="CCW")
     t, _ = tokens(text)
     assert t[:len(want)] == want
-    from cncc.ir import Linear, SetMode
+    from cncc.ir import Linear, SpindleSync
 
     cmds, _ = compile_commands(text, dialect="szgh")
-    tap = [c for c in cmds if isinstance(c, Linear) and c.origin == "G74"]
+    tap = [c for c in cmds if isinstance(c, Linear) and c.origin.code == "G74"]
     assert {c.feed_mm_min for c in tap} == {500.0}  # S100 x K5
-    assert {c.value for c in cmds if isinstance(c, SetMode) and c.name == "spindle_sync"} == {5.0, 0.0}
+    assert {c.pitch_mm for c in cmds if isinstance(c, SpindleSync)} == {5.0, 0.0}
 
 
 def test_e002_28_g74_without_pitch_is_an_error() -> None:
@@ -264,14 +264,14 @@ def test_e002_38_comprehensive_holes_and_levels() -> None:
     feeds = [c for c in cmds if isinstance(c, Linear)]
     by_code: dict[str, list[tuple[float, float, float]]] = {}
     for c in feeds:
-        by_code.setdefault(c.origin, []).append((c.end[0], c.end[1], c.end[2]))
+        by_code.setdefault(c.origin.code, []).append((c.end[0], c.end[1], c.end[2]))
     assert by_code["G81"] == [(400.0, -350.0, -153.0), (400.0, -550.0, -153.0), (400.0, -750.0, -153.0),
                               (1200.0, -750.0, -153.0), (1200.0, -550.0, -153.0), (1200.0, -350.0, -153.0)]
     assert by_code["G82"] == [(550.0, -450.0, -130.0), (550.0, -650.0, -130.0), (1050.0, -650.0, -130.0),
                               (1050.0, -450.0, -130.0)]
     # G85: feed in to -153 and out to R 47 (above the initial level 0: a warning, not an error)
     assert by_code["G85"] == [(800.0, y, z) for y in (-350.0, -550.0, -750.0) for z in (-153.0, 47.0)]
-    assert {c.feed_mm_min for c in feeds if c.origin == "G85"} == {150.0}
+    assert {c.feed_mm_min for c in feeds if c.origin.code == "G85"} == {150.0}
     assert codes(r).count("W0410") == 1
 
 

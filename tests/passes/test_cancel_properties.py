@@ -233,7 +233,7 @@ def test_every_hole_is_reached_by_a_rapid_to_its_transformed_position(
     dialect, text, expected, z0 = case
     moves, errors = moves_by_line(text, dialect)
     assert not errors, (errors, text)
-    cycle_moves = [m for _, m in moves if m.origin.startswith(("G7", "G8"))]
+    cycle_moves = [m for _, m in moves if m.origin.code.startswith(("G7", "G8"))]
     drilled: list[tuple[float, float]] = []
     for m in cycle_moves:
         if math.hypot(m.end[0] - m.start[0], m.end[1] - m.start[1]) > EPS:
@@ -277,7 +277,7 @@ def test_inside_a_cycle_after_a_cancel_the_unnamed_plane_axis_stays() -> None:
     moves, errors = moves_by_line(text, "syntec")
     assert not errors
     rotated_y = 20.0  # (20, 0) turned by 90 degrees about the origin is (0, 20)
-    cycle = [m for _, m in moves if m.origin == "G81"]
+    cycle = [m for _, m in moves if m.origin.code == "G81"]
     feeds = [m for m in cycle if isinstance(m, Linear)]
     assert [(round(f.start[0], 6), round(f.start[1], 6)) for f in feeds] == [(5.0, rotated_y)]
     assert [round(f.end[2], 6) for f in feeds] == [-5.0]

@@ -17,13 +17,14 @@ counts never reach the target: each repeat is written as its own hole.
 from __future__ import annotations
 
 from cncc.backends.gcode.target import Target
-from cncc.ir import CompSide, Cycle, CycleKind, Plane, Vec6
+from cncc.ir import CompSide, Cycle, CycleKind, CycleKindBase, Plane, Vec6
 
 _PECKS = (CycleKind.PECK, CycleKind.PECK_HIGH_SPEED)
 _TAPS = (CycleKind.TAP, CycleKind.TAP_LEFT)
 _SHIFTS = (CycleKind.FINE_BORE, CycleKind.BACK_BORE)
-_CLEARANCE_KEYS = {CycleKind.PECK_HIGH_SPEED: "cycle_g73_retract_mm", CycleKind.PECK: "cycle_g83_clearance_mm",
-                   CycleKind.TAP: "cycle_tap_clearance_mm", CycleKind.TAP_LEFT: "cycle_tap_clearance_mm"}
+_CLEARANCE_KEYS: dict[CycleKindBase, str] = {
+    CycleKind.PECK_HIGH_SPEED: "cycle_g73_retract_mm", CycleKind.PECK: "cycle_g83_clearance_mm",
+    CycleKind.TAP: "cycle_tap_clearance_mm", CycleKind.TAP_LEFT: "cycle_tap_clearance_mm"}
 _TOL_MM = 1e-9
 
 

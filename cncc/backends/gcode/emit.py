@@ -40,8 +40,10 @@ from cncc.backends.gcode.target import Target, make_target
 from cncc.diagnostics import DiagnosticSink
 from cncc.dialects import Dialect
 from cncc.ir import (
+    MODE_TYPES,
     Arc,
     Aux,
+    CallBoundary,
     Command,
     Comment,
     Coolant,
@@ -49,13 +51,19 @@ from cncc.ir import (
     Cycle,
     Dwell,
     Frame,
+    HoldAxes,
     Linear,
     Message,
+    ModeCommand,
+    OriginKind,
     PathMode,
     Plane,
+    PresetG92,
+    Probe,
     Rapid,
     SelectTool,
-    SetMode,
+    SetPathMode,
+    SetToolNumber,
     Spindle,
     SpindleSpeed,
     SpindleState,
@@ -65,6 +73,7 @@ from cncc.ir import (
     Units,
     Vec6,
     Wait,
+    WriteWorkTable,
 )
 from cncc.ir.frame import Mirror, Rotation, Scaling
 from cncc.source import NO_SPAN, Span
@@ -235,10 +244,10 @@ class GcodeEmitter:
         tf = self.tf
         if tf.work_mm is None and cmd.frame.work_index == 1:  # the power-on G54 (before a G55 ... of the program)
             tf.work_mm = tf.work_tables.setdefault(1, cmd.frame.work_offset_mm)
-        if True in cmd.frame.held_axes and not isinstance(cmd, Rapid | Linear | Arc):  # a cancel (SetMode)
+        if True in cmd.frame.held_axes and not isinstance(cmd, Rapid | Linear | Arc):  # a cancel (a mode command)
             self.held = tuple(a or b for a, b in zip(self.held, cmd.frame.held_axes, strict=True))
-        if isinstance(cmd, SetMode) and cmd.name == "held_axes":  # moved outside the program (M06, G28, G53)
-            self.unknown |= {k for k, h in enumerate(cmd.value) if h}
+        if isinstance(cmd, HoldAxes):  # moved outside the program (M06, G28, G53)
+            self.unknown |= {k for k, h in enumerate(cmd.axes) if h}
 
     def _command(self, cmd: Command) -> Iterator[str]:
         if self.probe is not None and isinstance(cmd, Linear):  # the moves after a G38.x marker
@@ -277,10 +286,30 @@ class GcodeEmitter:
                 yield self.op_block("program_stop", "a wait", comment=f"wait: {cmd.what}")
             case Aux():
                 yield from self._aux(cmd)
-            case SetMode():
-                yield from self._set_mode(cmd)
+            case _ if isinstance(cmd, MODE_TYPES):
+                yield from self._mode(cmd)
             case _:
                 pass
+
+    def _mode(self, cmd: ModeCommand) -> Iterator[str]:
+        """The mode commands a translation acts on: call boundaries, G92 presets, G10 work offsets, G61/G64."""
+        match cmd:
+            case Probe():
+                self.probe = (self.t.code(cmd.op), cmd.folded)
+            case SetToolNumber():  # M61 Q
+                yield self.op_block("set_tool_number", "setting the tool number without a change", [f"Q{cmd.tool}"])
+            case CallBoundary() if self.opt.keep_subprograms:
+                from cncc.backends.gcode.subprograms import call_marker
+
+                yield call_marker(self, cmd)
+            case PresetG92():
+                self.g92_force |= set(cmd.axes)
+            case WriteWorkTable():
+                yield from self._work_table(cmd.index, cmd.old_mm, cmd.new_mm)
+            case SetPathMode() if not cmd.for_cycle:
+                op = "exact_stop_mode" if cmd.mode is PathMode.EXACT_STOP else "continuous_mode"
+                if self.t.has(op):
+                    yield self.block([self.t.code(op)])
 
     def _select_tool(self, cmd: SelectTool) -> str:
         limit = self.t.word_max.get("T")
@@ -318,7 +347,7 @@ class GcodeEmitter:
         self._note_frame(cmd)
         code, left = self.probe
         self.probe = (code, left - 1) if left > 1 else None
-        if cmd.origin.endswith("back-off"):
+        if cmd.origin.kind is OriginKind.PROBE_BACKOFF:
             pass
         elif code:
             self._check_increment(cmd)
@@ -326,30 +355,12 @@ class GcodeEmitter:
             words = [code, *self._axes(cmd.start, cmd.end, self._released(cmd.frame)), self._feed_word(cmd.feed_mm_min)]
             yield from self._g91(words)
         else:
-            self.warn(dg.XL_NO_PROBE, f"{self.t.name} has no probing: the {cmd.origin} probe move is not written",
+            self.warn(dg.XL_NO_PROBE, f"{self.t.name} has no probing: the {cmd.origin.code} probe move is not written",
                       once=False)
-            yield self.block([], f"{cmd.origin} probe: no {self.t.name} code")
+            yield self.block([], f"{cmd.origin.code} probe: no {self.t.name} code")
         if self.probe is None:  # where a probe stops is not known: the next move writes every axis
             self.unknown |= {0, 1, 2}
             self.qpos = None
-
-    def _set_mode(self, cmd: SetMode) -> Iterator[str]:
-        if cmd.name == "probe":
-            self.probe = (self.t.code(cmd.value[1]), int(cmd.value[-1]))
-        elif cmd.name == "tool_number":  # M61 Q
-            yield self.op_block("set_tool_number", "setting the tool number without a change", [f"Q{cmd.value}"])
-        elif cmd.name in ("call_begin", "call_end") and self.opt.keep_subprograms:
-            from cncc.backends.gcode.subprograms import call_marker
-
-            yield call_marker(self, cmd)
-        elif cmd.name == "g92_preset":
-            self.g92_force |= set(cmd.value)
-        elif cmd.name == "work_table":
-            yield from self._work_table(*cmd.value)
-        elif cmd.name == "path_mode":
-            op = "exact_stop_mode" if cmd.value is PathMode.EXACT_STOP else "continuous_mode"
-            if self.t.has(op):
-                yield self.block([self.t.code(op)])
 
     def _work_table(self, index: int, old: Vec6, new: Vec6) -> Iterator[str]:
         """G10 L2 (or L20, LinuxCNC's G10 L20) set a work offset: the target's ``G10 L2 Pn`` when it has one,
@@ -628,9 +639,10 @@ class GcodeEmitter:
         The target's own code where it has it (the moved axes are then unknown again), else E0861."""
         from cncc.dialects import code_tenths
 
-        cdef = self.t.dialect.code(cmd.origin[:1], code_tenths(cmd.origin[1:]))
+        code = cmd.origin.code
+        cdef = self.t.dialect.code(code[:1], code_tenths(code[1:]))
         if cdef is None or cdef.op != "return_start":
-            self.warn(dg.XL_RETURN_START, f"{cmd.origin} returns to the program's start point; {self.t.name} has "
+            self.warn(dg.XL_RETURN_START, f"{code} returns to the program's start point; {self.t.name} has "
                                           "no such code and a rapid to an assumed start would move elsewhere "
                                           "from any other start", once=False)
             return
@@ -641,7 +653,7 @@ class GcodeEmitter:
 
     def _motion(self, cmd: Rapid | Linear | Arc) -> Iterator[str]:
         match cmd:
-            case Rapid() if cmd.origin[:3] == "G26":
+            case Rapid() if cmd.origin.kind is OriginKind.RETURN_START:
                 yield from self._return_start(cmd)
             case Rapid():
                 yield from self._g91([self.t.code("rapid"),

@@ -182,7 +182,7 @@ def _kept(cmds: Sequence[Command], motions: Sequence[Command], kind: type, step_
         motion = isinstance(c, Rapid | Linear | Arc | Cycle)
         if (first != state or not _frame_ok(c.frame, r) or (motion and c.frame.incremental)
                 or not all(_written_exactly(v, step) for v in _centre(r, target)) or _scaling_bad(c, r, target)
-                or (isinstance(c, Rapid | Linear | Arc) and (c.origin == "G53" or c.origin.endswith(" ref")))):
+                or (isinstance(c, Rapid | Linear | Arc) and c.origin.in_machine_terms)):
             bad.add(r)
     for k, m in enumerate(motions):  # compensation next to a transform
         r = _record(m.frame, kind)

@@ -1,7 +1,7 @@
 """Kept subprograms (``--keep-subprograms``): called programs written once and called.
 
 Consumes the emitter's lines with marker lines where each run of a called program
-began and ended (the macro executor's ``SetMode("call_begin"/"call_end")`` records,
+began and ended (the macro executor's ``CallBoundary`` records,
 passed through by the emitter); produces the program with each called program that
 the target can call written once, as its own section, and called:
 
@@ -29,7 +29,7 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
 from cncc import diagnostics as dg
-from cncc.ir import Command, SetMode
+from cncc.ir import CallBoundary, Command
 
 if TYPE_CHECKING:
     from cncc.backends.gcode.emit import GcodeEmitter
@@ -252,12 +252,11 @@ def incremental_form(em: GcodeEmitter, words: list[str], comment: str) -> str:
         em.in_alt = False
 
 
-def call_marker(em: GcodeEmitter, cmd: SetMode) -> str:
+def call_marker(em: GcodeEmitter, cmd: CallBoundary) -> str:
     """A marker line (not program text) where a called program's run begins or ends."""
-    begin = cmd.name == "call_begin"
+    begin = cmd.begin
     if begin:
-        key, name = cmd.value
-        em.calls.append((str(key), str(name), cmd.span))
+        em.calls.append((cmd.key, cmd.name, cmd.span))
         em.call_depth += 1
         em.feed = None  # every run writes its first F and all of X Y Z in its first move: what was in
         em.all_axes = True  # force at one call only must not make the runs' blocks differ

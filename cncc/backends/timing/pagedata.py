@@ -21,7 +21,6 @@ Speed: every phase boundary plus one sample per column, reduced per column by
 from __future__ import annotations
 
 import base64
-import re
 from collections.abc import Sequence
 from typing import TYPE_CHECKING, Any
 
@@ -29,7 +28,7 @@ from cncc.backends.timing import sampling
 from cncc.backends.timing.decimate import Columns, douglas_peucker, speed_columns
 from cncc.backends.timing.events import CATEGORIES
 from cncc.backends.timing.model import MOTION_LIMITS, NS_PER_S, Column, TimingReport, to_s
-from cncc.ir import Command, Linear
+from cncc.ir import Command, Linear, OriginKind
 
 if TYPE_CHECKING:
     import numpy as np
@@ -45,7 +44,6 @@ MAX_BANDS = 4_000
 TEXT_CHARS = 80
 DP_FRACTION = 1 / 3000
 QUANT = 65535
-_CYCLE_CODE = re.compile(r"^G\d")
 _RAPID = CATEGORIES.index("rapid")
 _FEED = CATEGORIES.index("feed")
 
@@ -215,7 +213,7 @@ def drill_holes(cmds: Sequence[Command]) -> list[list[float]]:
     """[x, y, bottom z] of each hole a canned cycle feeds into (pecks of one hole counted once)."""
     out: list[list[float]] = []
     for c in cmds:
-        if isinstance(c, Linear) and c.origin and _CYCLE_CODE.match(c.origin):
+        if isinstance(c, Linear) and c.origin.kind is OriginKind.CYCLE:
             s, e = c.start, c.end
             if abs(s[0] - e[0]) < 1e-9 and abs(s[1] - e[1]) < 1e-9 and e[2] < s[2]:
                 if out and abs(out[-1][0] - e[0]) < 1e-9 and abs(out[-1][1] - e[1]) < 1e-9:

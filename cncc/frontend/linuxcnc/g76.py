@@ -9,8 +9,8 @@ the entry/exit at the slanted pitch) and rapids out and back.  The cycle ends wi
 rapid to the block's end point.  I/J/K are diameters in G7 mode.  G76 is a motion mode:
 a later block with axis words runs it again (and needs its words again).
 
-IR: ``SetMode("feed_override", False)`` before each synchronised stretch and ``True``
-after it; ``SetMode("spindle_sync", pitch mm)`` ... ``SetMode("spindle_sync", 0.0)``
+IR: ``SetFeedOverride(False)`` before each synchronised stretch and ``True``
+after it; ``SpindleSync(pitch mm)`` ... ``SpindleSync(0.0)``
 around the moves that follow the spindle (their feed is the nominal ``rpm x pitch``).
 The canon back end prints LinuxCNC's DISABLE_FEED_OVERRIDE / START_SPEED_FEED_SYNC /
 STOP_SPEED_FEED_SYNCH / ENABLE_FEED_OVERRIDE; a G-code translation writes plain moves.
@@ -27,7 +27,9 @@ from cncc.dialects import CodeDef
 from cncc.frontend import ops
 from cncc.frontend.cycles import spindle_state
 from cncc.frontend.linuxcnc.lathe import diameter_mode
-from cncc.ir import CompSide, Linear, Rapid, SetMode, SpindleState, Vec6
+from cncc.ir import CompSide, Linear, Origin, OriginKind, Rapid, SetFeedOverride, SpindleState, SpindleSync, Vec6
+
+_ORIGIN = Origin(OriginKind.CYCLE, "G76")  # the moves of the threading cycle
 
 if TYPE_CHECKING:
     from cncc.frontend.interp import BlockContext, Interpreter
@@ -132,17 +134,21 @@ class _Passes:
 
     def rapid(self, p: tuple[float, float, float]) -> None:
         e = self._end(p)
-        self.ctx.out.append(Rapid(self.ctx.span, self.it.frame, self.at, e, self.motion, "G76"))
+        self.ctx.out.append(Rapid(self.ctx.span, self.it.frame, self.at, e, self.motion, _ORIGIN))
         self.at = e
 
     def feed(self, p: tuple[float, float, float], pitch: float) -> None:
         e = self._end(p)
         rpm = self.it.modal.spindle_rpm
-        self.ctx.out.append(Linear(self.ctx.span, self.it.frame, self.at, e, rpm * pitch * self.k, self.motion, "G76"))
+        self.ctx.out.append(Linear(self.ctx.span, self.it.frame, self.at, e, rpm * pitch * self.k, self.motion,
+                                   _ORIGIN))
         self.at = e
 
-    def mode(self, name: str, value: object) -> None:
-        self.ctx.out.append(SetMode(self.ctx.span, self.it.frame, name, value))
+    def sync(self, pitch_mm: float) -> None:
+        self.ctx.out.append(SpindleSync(self.ctx.span, self.it.frame, pitch_mm))
+
+    def feed_override(self, enabled: bool) -> None:
+        self.ctx.out.append(SetFeedOverride(self.ctx.span, self.it.frame, enabled))
 
     def thread(self, t: _Thread, depth: float, zoff: float) -> None:
         """One pass (rs274's threading_pass)."""
@@ -153,24 +159,24 @@ class _Passes:
         x_crest = t.safe_x + sign * (depth - t.full_height)
         self.rapid((x_back, y, z0))
         if t.taper and t.entry:
-            self.mode("feed_override", False)
-            self.mode("spindle_sync", t.taper_pitch * self.k)
+            self.feed_override(False)
+            self.sync(t.taper_pitch * self.k)
             self.feed((x_crest, y, z0), t.taper_pitch)
             self.feed((x_cut, y, z0 - t.taper), t.taper_pitch)
-            self.mode("spindle_sync", t.pitch * self.k)
+            self.sync(t.pitch * self.k)
         else:
             self.rapid((x_cut, y, z0))
-            self.mode("feed_override", False)
-            self.mode("spindle_sync", t.pitch * self.k)
+            self.feed_override(False)
+            self.sync(t.pitch * self.k)
         if t.taper and t.exit:
             self.feed((x_cut, y, z1 + t.taper), t.pitch)
-            self.mode("spindle_sync", t.taper_pitch * self.k)
+            self.sync(t.taper_pitch * self.k)
             self.feed((x_crest, y, z1), t.taper_pitch)
         else:
             self.feed((x_cut, y, z1), t.pitch)
-        self.mode("spindle_sync", 0.0)
+        self.sync(0.0)
         self.rapid((x_back, y, z1))
-        self.mode("feed_override", True)
+        self.feed_override(True)
 
 
 ops.MOTIONS["lathe_thread"] = _g76

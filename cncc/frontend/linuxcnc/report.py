@@ -27,6 +27,7 @@ from cncc.frontend.linuxcnc.placement import Placement
 from cncc.frontend.linuxcnc.rotation import reexpress, rotate_frames, rotation_in_use
 from cncc.frontend.syntax import Word
 from cncc.ir import (
+    MODE_TYPES,
     Command,
     Comment,
     CompSide,
@@ -34,13 +35,25 @@ from cncc.ir import (
     CoolantState,
     Cycle,
     Dwell,
+    FeedMode,
     FeedRate,
     Frame,
+    Origin,
+    OriginKind,
     PathMode,
     Plane,
     Rapid,
     SelectTool,
-    SetMode,
+    SetFeedMode,
+    SetG92Offset,
+    SetLocalOffset,
+    SetPathMode,
+    SetPlane,
+    SetSpindleMode,
+    SetToolLength,
+    SetUnits,
+    SetWorkSystem,
+    SetXyRotation,
     Spindle,
     SpindleSpeed,
     SpindleState,
@@ -48,6 +61,7 @@ from cncc.ir import (
     StopKind,
     ToolChange,
     Vec6,
+    WriteToolTable,
 )
 from cncc.source import Span
 
@@ -59,7 +73,8 @@ _ALWAYS = {"comp_off": "comp_off", "comp_left": "comp_left", "comp_right": "comp
            "comp_left_dynamic": "comp_left", "comp_right_dynamic": "comp_right",
            "inverse_time": "inverse_time", "feed_per_min_rs274": "per_min", "feed_per_rev_rs274": "per_rev",
            "motion_off": "motion_none", "return_initial": "retract_old_z", "return_r": "retract_r_plane"}
-_FEED_MODES = {"inverse_time": "inverse_time", "feed_per_min_rs274": "per_min", "feed_per_rev_rs274": "per_rev"}
+_FEED_MODES = {"inverse_time": FeedMode.INVERSE_TIME, "feed_per_min_rs274": FeedMode.PER_MIN,
+               "feed_per_rev_rs274": FeedMode.PER_REV}
 
 
 # The codes that read a P word in LinuxCNC 2.9 (x10: G5.2 is 52) and rs274's message otherwise.
@@ -200,12 +215,12 @@ class Reporter:
     def _repeated_modes(self, span: Span, ops: list[str], out: list[Command]) -> list[tuple[int, Command]]:
         """SELECT_PLANE / USE_LENGTH_UNITS for a plane or units code that changed nothing."""
         it = self.it
-        names = {c.name for c in out if isinstance(c, SetMode)}
+        kinds = {type(c) for c in out}
         extra: list[tuple[int, Command]] = []
-        if any(op in ("plane_xy", "plane_zx", "plane_yz") for op in ops) and "plane" not in names:
-            extra.append((11, SetMode(span, it.frame, "plane", it.frame.plane)))
-        if any(op in ("inch", "metric") for op in ops) and "units" not in names:
-            extra.append((12, SetMode(span, it.frame, "units", it.frame.units)))
+        if any(op in ("plane_xy", "plane_zx", "plane_yz") for op in ops) and SetPlane not in kinds:
+            extra.append((11, SetPlane(span, it.frame, it.frame.plane)))
+        if any(op in ("inch", "metric") for op in ops) and SetUnits not in kinds:
+            extra.append((12, SetUnits(span, it.frame, it.frame.units)))
         return extra
 
     def _feed_modes(self, span: Span, ops: list[str], out: list[Command], at: int, words: tuple[Word, ...]) -> None:
@@ -214,9 +229,9 @@ class Reporter:
         if op is None:
             return
         it = self.it
-        i = next((k for k in range(at, len(out)) if _is_mode(out[k], "feed_mode")), None)
+        i = next((k for k in range(at, len(out)) if isinstance(out[k], SetFeedMode)), None)
         if i is None:
-            i = _place(out, at, 2, SetMode(span, it.frame, "feed_mode", _FEED_MODES[op]), {})
+            i = _place(out, at, 2, SetFeedMode(span, it.frame, _FEED_MODES[op]), {})
         if op != "inverse_time":
             out.insert(i + 1, FeedRate(span, it.frame, 0.0, op == "feed_per_rev_rs274"))
             if not any(w.letter == "F" for w in words):
@@ -230,8 +245,8 @@ class Reporter:
 
         if not any(op in ("length_plus", "length_off") for op in ops):
             return
-        if not any(_is_mode(c, "tool_length_offset") for c in out[at:]):
-            _place(out, at, 14, SetMode(span, self.it.frame, "tool_length_offset", self.it.frame.tool_length_mm), {})
+        if not any(isinstance(c, SetToolLength) for c in out[at:]):
+            _place(out, at, 14, SetToolLength(span, self.it.frame, self.it.frame.tool_length_mm), {})
         if not any(w.letter == "Z" for w in words):
             shift_z(self.it, before.tool_length_mm)
 
@@ -242,10 +257,9 @@ class Reporter:
         for k in range(len(out) - 1, at - 1, -1):
             c = out[k]
             nxt = out[k + 1] if k + 1 < len(out) else None
-            if isinstance(c, SetMode) and c.name == "g5x_offset" and \
-                    not (isinstance(nxt, SetMode) and nxt.name == "xy_rotation"):
-                out[k + 1:k + 1] = [SetMode(c.span, c.frame, "g92_offset", c.frame.g92_offset_mm),
-                                    SetMode(c.span, c.frame, "xy_rotation", rotation_deg(self.it, c.frame.work_index))]
+            if isinstance(c, SetWorkSystem) and not isinstance(nxt, SetXyRotation):
+                out[k + 1:k + 1] = [SetG92Offset(c.span, c.frame, c.frame.g92_offset_mm),
+                                    SetXyRotation(c.span, c.frame, rotation_deg(self.it, c.frame.work_index))]
 
     # ---- canned cycles
     def _cycles(self, out: list[Command], at: int) -> None:
@@ -267,10 +281,10 @@ class Reporter:
             path = self.it.modal.path
             post: list[Command] = []
             if path.mode is not PathMode.EXACT_PATH:
-                pre.append(SetMode(c.span, c.frame, "cycle_path_mode", PathMode.EXACT_PATH))
-                value = (path.mode, path.blend_tolerance_mm or 0.0,
-                         state(self.it).naive_mm if path.mode is PathMode.CONTINUOUS else None)
-                post.append(SetMode(c.span, c.frame, "cycle_path_mode", value))
+                pre.append(SetPathMode(c.span, c.frame, PathMode.EXACT_PATH, for_cycle=True))
+                naive_mm = state(self.it).naive_mm if path.mode is PathMode.CONTINUOUS else None
+                post.append(SetPathMode(c.span, c.frame, path.mode, path.blend_tolerance_mm or 0.0, naive_mm,
+                                        for_cycle=True))
             out[k:k + 1] = [*pre, c, *post]
             k += len(pre) + 1 + len(post)
 
@@ -288,7 +302,7 @@ class Reporter:
         data = cycles.cycle_data(self.it)
         if data is not None:  # later blocks of this cycle keep R as their initial level
             self.it.cycle = replace(self.it.cycle, data=replace(data, initial_mm=c.r_mm))
-        rise = Rapid(c.span, c.frame, c.start, up, c.motion, c.code)
+        rise = Rapid(c.span, c.frame, c.start, up, c.motion, Origin(OriginKind.CYCLE, c.code))
         return replace(c, start=up, initial_mm=c.r_mm), rise  # the holes end at R (G99) or max(start, R) = R
 
     # ---- M2 / M30
@@ -302,13 +316,13 @@ class Reporter:
         it.set_frame(replace(it.frame, work_index=1, work_offset_mm=g54))
         from cncc.frontend.rs274_g10 import rotation_deg
 
-        resets += [SetMode(span, it.frame, "g5x_offset", 1),
-                   SetMode(span, it.frame, "xy_rotation", rotation_deg(it, 1))]
+        resets += [SetWorkSystem(span, it.frame, 1),
+                   SetXyRotation(span, it.frame, rotation_deg(it, 1))]
         if it.frame.plane is not Plane.XY:
             it.set_frame(replace(it.frame, plane=Plane.XY))
-            resets.append(SetMode(span, it.frame, "plane", Plane.XY))
-        resets += [SetMode(span, it.frame, "feed_mode", "per_min"), FeedRate(span, it.frame, 0.0),
-                   Spindle(span, it.frame, SpindleState.OFF, 0.0), SetMode(span, it.frame, "spindle_mode", 0.0)]
+            resets.append(SetPlane(span, it.frame, Plane.XY))
+        resets += [SetFeedMode(span, it.frame, FeedMode.PER_MIN), FeedRate(span, it.frame, 0.0),
+                   Spindle(span, it.frame, SpindleState.OFF, 0.0), SetSpindleMode(span, it.frame, 0.0)]
         if self.flood or self.mist:
             resets.append(Coolant(span, it.frame, CoolantState.OFF))
         out[k:k + 1] = [*resets, replace(out[k], frame=it.frame)]
@@ -328,8 +342,9 @@ class Reporter:
 _COMMENT_STAGE = {"inverse_time": 2, "per_min": 2, "per_rev": 2, "comp_off": 13, "comp_left": 13, "comp_right": 13,
                   "same_system": 15, "distance_absolute": 17, "distance_incremental": 17, "ijk_absolute": 17,
                   "ijk_incremental": 17, "retract_old_z": 18, "retract_r_plane": 18, "motion_none": 20}
-_MODE_STAGE = {"feed_mode": 2, "plane": 11, "units": 12, "tool_length_offset": 14, "g5x_offset": 15,
-               "xy_rotation": 15, "path_mode": 16, "g92_offset": 19, "g52_offset": 19, "tool_table": 19}
+_MODE_STAGE: dict[type[Command], int] = {
+    SetFeedMode: 2, SetPlane: 11, SetUnits: 12, SetToolLength: 14, SetWorkSystem: 15, SetXyRotation: 15,
+    SetG92Offset: 19, SetLocalOffset: 19, WriteToolTable: 19}
 
 
 def _stage(c: Command, known: dict[int, int] | None = None) -> int:
@@ -353,8 +368,10 @@ def _stage(c: Command, known: dict[int, int] | None = None) -> int:
             return 8
         case Dwell():
             return 10
-        case SetMode():
-            return _MODE_STAGE.get(c.name, 20)
+        case SetPathMode():
+            return 20 if c.for_cycle else 16
+        case _ if isinstance(c, MODE_TYPES):
+            return _MODE_STAGE.get(type(c), 20)
         case Stop():
             return 21
     return 20
@@ -373,10 +390,6 @@ def _place(out: list[Command], at: int, stage: int, cmd: Command, known: dict[in
         known[id(cmd)] = stage
     out.insert(k, cmd)
     return k
-
-
-def _is_mode(c: Command, name: str) -> bool:
-    return isinstance(c, SetMode) and c.name == name
 
 
 def _is_end(c: Command) -> bool:

@@ -21,7 +21,7 @@ from typing import TYPE_CHECKING
 
 from cncc.frontend.linuxcnc.placement import Placement
 from cncc.frontend.syntax import Word
-from cncc.ir import Command, Frame, Linear, Plane, Rapid, Vec6
+from cncc.ir import PROGRAMMED, Command, Frame, Linear, OriginKind, Plane, Rapid, Vec6
 from cncc.ir.frame import Rotation
 
 if TYPE_CHECKING:
@@ -53,7 +53,7 @@ def reexpress(it: Interpreter, before: Placement, start: Vec6, words: tuple[Word
     if before.theta_deg == 0.0 and after.theta_deg == 0.0:
         return
     moves = [k for k in range(at, len(out)) if isinstance(out[k], Rapid | Linear)]
-    g53 = [k for k in moves if getattr(out[k], "origin", "") == "G53"]
+    g53 = [k for k in moves if getattr(out[k], "origin", PROGRAMMED).kind is OriginKind.MACHINE]
     if g53:
         given = {w.letter: it.reader.axis_value(w) for w in words if w.letter in "XY"}
         for k in g53:

@@ -22,7 +22,7 @@ from cncc.frontend.macro.frames import CallFrame, ModalCall
 from cncc.frontend.macro.program import Unit, program_key
 from cncc.frontend.macro.values import MacroError
 from cncc.frontend.syntax import Block, ProgramName, Word
-from cncc.ir import SetMode, Wait
+from cncc.ir import CallBoundary, Wait
 from cncc.source import Span
 
 if TYPE_CHECKING:
@@ -174,7 +174,7 @@ def call_marker(ex: Executor, fr: CallFrame, name: str) -> None:
     """Record where a run of a called program begins or ends (translation keeps subprograms)."""
     if ex.opts.call_markers and fr.call_span is not None:
         key = f"{fr.unit.source.source_id}:{fr.entry}"
-        ex.out.append(SetMode(fr.call_span, ex.it.frame, name, (key, fr.name)))
+        ex.out.append(CallBoundary(fr.call_span, ex.it.frame, name == "call_begin", key, fr.name))
 
 
 def _depth_ok(ex: Executor, kind: str, span: Span) -> bool:

@@ -76,7 +76,7 @@ class MacroOptions:
     files_used: list[str] = field(default_factory=list)  # filled: subprogram files loaded (-M)
     # called before (False) and after (True) each block runs (the language server records variable values)
     trace: Callable[[Executor, Block, bool], None] | None = None
-    # SetMode("call_begin"/"call_end", (program key, name)) around every run of a called program
+    # CallBoundary(begin, program key, name) around every run of a called program
     # (translation --keep-subprograms); off: no marker reaches the IR
     call_markers: bool = False
     # the other input files of the run: their O programs can be called (a main and its library)

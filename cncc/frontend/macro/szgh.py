@@ -1,7 +1,7 @@
 """SZGH statements: block IF/ELIF/ELSE/ENDIF, WAT/OUT, MSG/STAF and FILE*.
 
 ``WAT`` and the input-test M codes become :class:`~cncc.ir.Wait` commands (the
-timing report counts them as waits); ``OUT`` becomes a ``SetMode("output", (Ynn,
+timing report counts them as waits); ``OUT`` becomes a ``SetOutput(Ynn,
 on))``; ``MSG`` a pausing :class:`~cncc.ir.Message`, ``STAF`` a plain one.  The
 program-writing statements go through :class:`~cncc.frontend.macro.fileio.Sandbox`.
 """
@@ -15,7 +15,7 @@ from cncc.dialects import CodeDef
 from cncc.frontend.macro.fileio import Sandbox, SandboxError
 from cncc.frontend.macro.frames import CallFrame
 from cncc.frontend.syntax import Else, ElseIf, EndIf, FileStmt, IfBlock, IoOut, IoWait, MessageStmt, Statement, Word
-from cncc.ir import Message, SetMode, Wait
+from cncc.ir import Message, SetOutput, Wait
 from cncc.source import Span
 
 if TYPE_CHECKING:
@@ -71,7 +71,7 @@ class SzghStatements:
                 self._wait(st, span)
             case IoOut():
                 ex.io.outputs[st.signal] = st.on
-                ex.out.append(SetMode(span, ex.it.frame, "output", (st.signal, st.on)))
+                ex.out.append(SetOutput(span, ex.it.frame, st.signal, st.on))
             case MessageStmt():
                 ex.out.append(Message(span, ex.it.frame, st.text, pause=st.pause))
                 if st.pause:

@@ -33,7 +33,7 @@ from cncc.frontend.series8 import state
 from cncc.frontend.series8.codes import vendor_gate
 from cncc.frontend.series8.cycles import store_levels, tool_length
 from cncc.frontend.series8.layer import LAYER
-from cncc.ir import Arc, Command, CompSide, Frame, Linear, Motion, Rapid, Vec6
+from cncc.ir import Arc, Command, CompSide, Frame, Linear, Motion, Origin, OriginKind, Rapid, Vec6
 
 if TYPE_CHECKING:
     from cncc.frontend.interp import BlockContext, Interpreter
@@ -179,7 +179,8 @@ class _Builder:
 
     def __init__(self, it: Interpreter, ctx: BlockContext, c: CodeDef, centre: tuple[float, float],
                  feed: float) -> None:
-        self.it, self.ctx, self.name, self.centre, self.feed = it, ctx, c.name, centre, feed
+        self.it, self.ctx, self.centre, self.feed = it, ctx, centre, feed
+        self.origin = Origin(OriginKind.CYCLE, c.name)
         f = it.frame
         self.frame: Frame = f if f.comp_side is CompSide.OFF else replace(
             f, comp_side=CompSide.OFF, comp_radius_mm=0.0, comp_index=0)
@@ -196,19 +197,19 @@ class _Builder:
 
     def rapid(self, to: Vec6) -> None:
         if to != self.pos:
-            self.out.append(Rapid(self.ctx.span, self.frame, self.pos, to, self.motion, self.name))
+            self.out.append(Rapid(self.ctx.span, self.frame, self.pos, to, self.motion, self.origin))
             self.pos = to
 
     def feed_to(self, to: Vec6) -> None:
         if to != self.pos:
-            self.out.append(Linear(self.ctx.span, self.frame, self.pos, to, self.feed, self.motion, self.name))
+            self.out.append(Linear(self.ctx.span, self.frame, self.pos, to, self.feed, self.motion, self.origin))
             self.pos = to
 
     def arc(self, step: cp.Step) -> None:
         assert step.centre is not None
         end, centre = self.at(step.to), self.at(step.centre)
         self.out.append(Arc(self.ctx.span, self.frame, self.pos, end, centre, step.turns, self.frame.plane,
-                            self.feed, self.motion, self.name))
+                            self.feed, self.motion, self.origin))
         self.pos = end
 
     def run(self, path: cp.LevelPath, levels: tuple[float, float], per_pass: float) -> None:

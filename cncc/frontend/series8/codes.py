@@ -24,7 +24,19 @@ from cncc.frontend.ops import target
 from cncc.frontend.series8 import state
 from cncc.frontend.series8.layer import LAYER
 from cncc.frontend.syntax import Word
-from cncc.ir import Aux, Dwell, FeedRate, Frame, Linear, SetMode, Vec6
+from cncc.ir import (
+    Aux,
+    Dwell,
+    FeedRate,
+    Frame,
+    Linear,
+    Origin,
+    OriginKind,
+    SetCssReference,
+    SetRotation,
+    SetScaling,
+    Vec6,
+)
 from cncc.ir.frame import Rotation, Scaling
 
 if TYPE_CHECKING:
@@ -104,10 +116,10 @@ def _sine_loop(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
                                            f"{cycles} loop(s) (option g06_cycles, spec A-07)")
     start = it.pos
     mean = 2.0 * feed / math.pi
-    motion = ops.block_motion(it, ctx)
+    motion, origin = ops.block_motion(it, ctx), Origin(OriginKind.CODE, c.name)
     for _ in range(cycles):
-        ctx.out.append(Linear(ctx.span, it.frame, start, end, mean, motion, c.name))
-        ctx.out.append(Linear(ctx.span, it.frame, end, start, mean, motion, c.name))
+        ctx.out.append(Linear(ctx.span, it.frame, start, end, mean, motion, origin))
+        ctx.out.append(Linear(ctx.span, it.frame, end, start, mean, motion, origin))
     st.moved = True
 
 
@@ -149,12 +161,13 @@ def _plane_map(frame: Frame, p: Vec6, inverse: bool) -> Vec6:
     return (q[0], q[1], q[2], q[3], q[4], q[5])
 
 
-def _switch(it: Interpreter, ctx: BlockContext, frame: Frame, name: str, value: object) -> None:
+def _switch(it: Interpreter, ctx: BlockContext, frame: Frame, scaling: bool) -> None:
     """New transform records; semantics B keeps the actual point (A-13), A the programmed one."""
     if state.option(it, "rotation_unprogrammed_axes", "last_programmed") == "current_position":
         it.pos = _plane_map(frame, _plane_map(it.frame, it.pos, False), True)
     it.set_frame(frame)
-    ctx.out.append(SetMode(ctx.span, it.frame, name, value))
+    ctx.out.append(SetScaling(ctx.span, it.frame, frame.scaling) if scaling else
+                   SetRotation(ctx.span, it.frame, frame.rotation))
 
 
 @LAYER.handler("rotate_s8")
@@ -164,13 +177,13 @@ def _rotate(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
         it.emit_error(dg.TRANSFORM_WORDS, ctx.span, f"{c.name} needs the angle R (degrees)")
         return
     rot = Rotation(it.frame.plane, (0.0, 0.0), it.reader.angle_deg(rw))
-    _switch(it, ctx, replace(it.frame, rotation=rot), "rotation", rot)
+    _switch(it, ctx, replace(it.frame, rotation=rot), False)
 
 
 @LAYER.handler("rotate_off_s8")
 def _rotate_off(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     if it.frame.rotation is not None:
-        _switch(it, ctx, replace(it.frame, rotation=None), "rotation", None)
+        _switch(it, ctx, replace(it.frame, rotation=None), False)
 
 
 @LAYER.handler("scale_s8")
@@ -188,13 +201,13 @@ def _scale(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     factors = [1.0, 1.0, 1.0]
     factors[plane.first] = factors[plane.second] = k
     scaling = Scaling((0.0, 0.0, 0.0), (factors[0], factors[1], factors[2]))
-    _switch(it, ctx, replace(it.frame, scaling=scaling), "scaling", scaling)
+    _switch(it, ctx, replace(it.frame, scaling=scaling), True)
 
 
 @LAYER.handler("scale_off_s8")
 def _scale_off(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     if it.frame.scaling is not None:
-        _switch(it, ctx, replace(it.frame, scaling=None), "scaling", None)
+        _switch(it, ctx, replace(it.frame, scaling=None), True)
 
 
 # ---- G67-G69 --------------------------------------------------------------------------------
@@ -321,7 +334,7 @@ def _preset(it: Interpreter, ctx: BlockContext, st: state.S8State, cd: CodeDef) 
     rw = ctx.words.pop("R", None)
     if rw is not None:
         st.css_reference = (abs(it.reader.length_mm(rw)), it.pos[0])
-        ctx.out.append(SetMode(ctx.span, it.frame, "css_reference", st.css_reference))
+        ctx.out.append(SetCssReference(ctx.span, it.frame, *st.css_reference))
 
 
 LAYER.hook_first(_hook)

@@ -23,7 +23,7 @@ from dataclasses import replace
 
 from cncc import diagnostics as dg
 from cncc.diagnostics import DiagnosticSink
-from cncc.ir import Arc, Command, Linear, Rapid, Vec6
+from cncc.ir import Arc, Command, Linear, Origin, OriginKind, Rapid, Vec6
 from cncc.source import Span
 
 _EPS = 1e-9
@@ -87,7 +87,7 @@ class Stream:
 
     def _corner(self, first: Linear, kind: str, size: float, span: Span,
                 nxt: Rapid | Linear | Arc) -> tuple[Linear, Command, Linear] | None:
-        if not isinstance(nxt, Linear) or nxt.origin:
+        if not isinstance(nxt, Linear) or not nxt.origin.programmed:
             self.sink.emit(dg.CORNER_INSERT, span, "G10: the move after the corner must be a straight feed "
                                                    "move (G01/G21) (spec A-42)")
             return None
@@ -124,7 +124,8 @@ class Stream:
             c[j] = t1[j] + side * size * ux
             centre = (c[0], c[1], c[2], c[3], c[4], c[5])
             element = Arc(first.span, first.frame, t1, t2, centre, 1 if cross > 0 else -1, p, first.feed_mm_min,
-                          first.motion, "G10")
+                          first.motion, Origin(OriginKind.CODE, "G10"))
         else:
-            element = Linear(first.span, first.frame, t1, t2, first.feed_mm_min, first.motion, "G10")
+            element = Linear(first.span, first.frame, t1, t2, first.feed_mm_min, first.motion,
+                             Origin(OriginKind.CODE, "G10"))
         return trimmed, element, replace(nxt, start=t2)

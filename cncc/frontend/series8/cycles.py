@@ -25,19 +25,32 @@ from typing import TYPE_CHECKING
 
 from cncc import diagnostics as dg
 from cncc.dialects import CodeDef
+from cncc.dialects.series8_cycles import Series8CycleKind
 from cncc.frontend import cycles as shared
 from cncc.frontend import ops
 from cncc.frontend.series8 import state
 from cncc.frontend.series8.layer import LAYER
-from cncc.ir import CompSide, Cycle, CycleKind, SetMode, Vec6
+from cncc.ir import CompSide, Cycle, CycleKind, CycleKindBase, SetToolLength, Vec6
 
 if TYPE_CHECKING:
     from cncc.frontend.interp import BlockContext, Interpreter
 
-_RAPID_OUT = {CycleKind.BORE_DWELL_STOP_OUT: ("g86_rapid_return", CycleKind.BORE_DWELL_STOP_RAPID_OUT),
-              CycleKind.BORE_ORIENT_OUT: ("g88_rapid_return", CycleKind.BORE_ORIENT_RAPID_OUT)}
-_SHIFTED = (CycleKind.BORE_ORIENT_OUT, CycleKind.BACK_BORE_RETURN)
-_NO_DWELL = (CycleKind.DRILL, CycleKind.PECK_FIRST, CycleKind.TAP, CycleKind.CASE_BORE)  # no P in their formats
+_S8 = Series8CycleKind
+_RAPID_OUT: dict[CycleKindBase, tuple[str, CycleKindBase]] = {
+    _S8.BORE_DWELL_STOP_OUT: ("g86_rapid_return", _S8.BORE_DWELL_STOP_RAPID_OUT),
+    _S8.BORE_ORIENT_OUT: ("g88_rapid_return", _S8.BORE_ORIENT_RAPID_OUT)}
+_SHIFTED = (_S8.BORE_ORIENT_OUT, _S8.BACK_BORE_RETURN)
+_NO_DWELL = (CycleKind.DRILL, _S8.PECK_FIRST, CycleKind.TAP, _S8.CASE_BORE)  # no P in their formats
+
+
+def kind_of(name: str) -> CycleKindBase | None:
+    """The kind a SERIES 8 table names: one of its own or a core one (None: neither)."""
+    for kinds in (Series8CycleKind, CycleKind):
+        try:
+            return kinds(name)
+        except ValueError:
+            continue
+    return None
 
 
 def store_levels(it: Interpreter, ctx: BlockContext) -> bool:
@@ -58,7 +71,7 @@ def store_levels(it: Interpreter, ctx: BlockContext) -> bool:
     return absolute
 
 
-def _store(it: Interpreter, ctx: BlockContext, kind: CycleKind) -> bool:
+def _store(it: Interpreter, ctx: BlockContext, kind: CycleKindBase) -> bool:
     """Keep the block's cycle words; False after an error."""
     st = state.get(it)
     assert st is not None
@@ -74,7 +87,7 @@ def _store(it: Interpreter, ctx: BlockContext, kind: CycleKind) -> bool:
     if (w := ctx.words.get("K")) is not None:
         data.lead_mm = abs(rd.length_mm(w))
     iw, jw = ctx.words.get("I"), ctx.words.get("J")
-    if kind is CycleKind.PECK_FIRST:
+    if kind is Series8CycleKind.PECK_FIRST:
         if iw is not None:
             data.first_mm = rd.length_mm(iw) + (0.0 if absolute else initial)
         if jw is not None:
@@ -93,7 +106,7 @@ def tool_length(it: Interpreter, ctx: BlockContext) -> None:
     value = it.options.tool_lengths_mm.get(index, 0.0)
     if (value, index) != (it.frame.tool_length_mm, it.frame.tool_length_index):
         it.set_frame(replace(it.frame, tool_length_mm=value, tool_length_index=index))
-        ctx.out.append(SetMode(ctx.span, it.frame, "tool_length_offset", value))
+        ctx.out.append(SetToolLength(ctx.span, it.frame, value))
 
 
 def _select(inner: ops.Handler) -> ops.Handler:
@@ -101,9 +114,8 @@ def _select(inner: ops.Handler) -> ops.Handler:
         if state.get(it) is None:
             inner(it, ctx, c)
             return
-        try:
-            kind = CycleKind(c.cycle)
-        except ValueError:
+        kind = kind_of(c.cycle)
+        if kind is None:
             it.emit_error(dg.CYCLE_UNKNOWN, ctx.span, f"{c.name}: cycle kind {c.cycle!r} is not known to cncc")
             ctx.axis_used = True
             return
@@ -127,17 +139,18 @@ def _drill(inner: ops.MotionHandler) -> ops.MotionHandler:
         code = st.cycle_code
         if code is None:  # pragma: no cover - a cycle is only in force after its code
             return
-        kind = CycleKind(code.cycle)
+        kind = kind_of(code.cycle)
+        assert kind is not None  # checked when the cycle code was read
         if not any(c.op == "cycle" for c in ctx.codes):
             tool_length(it, ctx)
         if not _store(it, ctx, kind):
             return
         placed = any(a in ctx.words for a in "XYA")
-        if kind is CycleKind.CASE_BORE and st.at_depth and placed:
+        if kind is Series8CycleKind.CASE_BORE and st.at_depth and placed:
             it.emit_error(dg.CONTROLLER_REJECTS, ctx.span,
                           f"{code.name}: X/Y/A while the tool is at depth; retract first (spec A-41)")
             return
-        if not placed and kind is not CycleKind.CASE_BORE:
+        if not placed and kind is not Series8CycleKind.CASE_BORE:
             it.sink.emit(dg.ASSUMED, ctx.span, f"{code.name}: no X, Y or A in the block: the levels are stored, "
                                                "no hole is made (spec A-18)")
             return
@@ -146,7 +159,7 @@ def _drill(inner: ops.MotionHandler) -> ops.MotionHandler:
     return drill
 
 
-def _levels_ok(it: Interpreter, ctx: BlockContext, code: CodeDef, kind: CycleKind, data: state.CycleWords) -> bool:
+def _levels_ok(it: Interpreter, ctx: BlockContext, code: CodeDef, kind: CycleKindBase, data: state.CycleWords) -> bool:
     axis = ops.AXES[it.frame.plane.normal]
     if data.r_mm is None:
         it.emit_error(dg.CYCLE_NO_R, ctx.span, f"{code.name} needs an R level")
@@ -154,12 +167,12 @@ def _levels_ok(it: Interpreter, ctx: BlockContext, code: CodeDef, kind: CycleKin
     if data.z_mm is None:
         it.emit_error(dg.CYCLE_NO_BOTTOM, ctx.span, f"{code.name} needs the level {axis}")
         return False
-    if data.r_mm == data.z_mm or (kind is CycleKind.BACK_BORE_RETURN and data.z_mm < data.r_mm):
-        where = "above" if kind is CycleKind.BACK_BORE_RETURN else "away from"
+    if data.r_mm == data.z_mm or (kind is Series8CycleKind.BACK_BORE_RETURN and data.z_mm < data.r_mm):
+        where = "above" if kind is Series8CycleKind.BACK_BORE_RETURN else "away from"
         it.emit_error(dg.CYCLE_R_PAST_BOTTOM, ctx.span, f"{code.name}: {axis}{data.z_mm:g} must be {where} "
                                                         f"R {data.r_mm:g} (mm)")
         return False
-    if kind is CycleKind.PECK_FIRST:
+    if kind is Series8CycleKind.PECK_FIRST:
         down = 1.0 if data.z_mm > data.r_mm else -1.0
         if not data.peck_mm:
             it.emit_error(dg.CYCLE_BAD_PECK, ctx.span, f"{code.name} needs the peck depth J > 0 (spec A-19)")
@@ -172,7 +185,7 @@ def _levels_ok(it: Interpreter, ctx: BlockContext, code: CodeDef, kind: CycleKin
     return True
 
 
-def emit(it: Interpreter, ctx: BlockContext, code: CodeDef, kind: CycleKind, ends: tuple[Vec6, ...],
+def emit(it: Interpreter, ctx: BlockContext, code: CodeDef, kind: CycleKindBase, ends: tuple[Vec6, ...],
          pattern: str = "") -> None:
     """One :class:`Cycle` of the cycle in force over the hole positions ``ends`` (a G49/G50
     pattern gives several); the tool is left above the last one."""
@@ -201,9 +214,10 @@ def emit(it: Interpreter, ctx: BlockContext, code: CodeDef, kind: CycleKind, end
     n, p = it.frame.plane.normal, it.frame.plane
     start = it.pos
     level = start[n]
-    retract = {CycleKind.CASE_BORE: data.z_mm, CycleKind.BACK_BORE_RETURN: level}.get(kind, data.r_mm)
+    levels: dict[CycleKindBase, float] = {_S8.CASE_BORE: data.z_mm, _S8.BACK_BORE_RETURN: level}
+    retract = levels.get(kind, data.r_mm)
     shift = [0.0] * 6
-    if kind in (CycleKind.BORE_ORIENT_OUT, CycleKind.BORE_ORIENT_RAPID_OUT, CycleKind.BACK_BORE_RETURN):
+    if kind in (_S8.BORE_ORIENT_OUT, _S8.BORE_ORIENT_RAPID_OUT, _S8.BACK_BORE_RETURN):
         shift[p.first], shift[p.second] = data.shift_mm
     frame = it.frame
     if frame.comp_side is not CompSide.OFF:
@@ -211,14 +225,14 @@ def emit(it: Interpreter, ctx: BlockContext, code: CodeDef, kind: CycleKind, end
     placed = tuple(_at_level(e, n, retract) for e in ends)
     ctx.out.append(Cycle(
         ctx.span, frame, kind, code.name, start, placed, level, data.r_mm, data.z_mm, retract, feed,
-        return_initial=False, peck_mm=(data.peck_mm or 0.0) if kind is CycleKind.PECK_FIRST else 0.0,
-        first_depth_mm=data.first_mm if kind is CycleKind.PECK_FIRST else None,
-        clearance_mm=float(state.option(it, "cycle_g83_clearance_mm", 1.27)) if kind is CycleKind.PECK_FIRST else 0.0,
+        return_initial=False, peck_mm=(data.peck_mm or 0.0) if kind is Series8CycleKind.PECK_FIRST else 0.0,
+        first_depth_mm=data.first_mm if kind is Series8CycleKind.PECK_FIRST else None,
+        clearance_mm=float(state.option(it, "cycle_g83_clearance_mm", 1.27)) if kind is _S8.PECK_FIRST else 0.0,
         shift_mm=(shift[0], shift[1], shift[2], shift[3], shift[4], shift[5]),
         dwell_s=data.dwell_s if kind not in _NO_DWELL else 0.0,
         spindle=spindle, spindle_rpm=rpm, tap_pitch_mm=pitch, pattern=pattern, motion=ops.block_motion(it, ctx)))
     it.pos = placed[-1]
-    st.at_depth = kind is CycleKind.CASE_BORE
+    st.at_depth = kind is Series8CycleKind.CASE_BORE
     st.moved = True
 
 

@@ -27,12 +27,13 @@ from typing import TYPE_CHECKING
 
 from cncc import diagnostics as dg
 from cncc.dialects import CodeDef
+from cncc.dialects.series8_cycles import Series8CycleKind
 from cncc.frontend import ops
-from cncc.frontend.series8 import state
+from cncc.frontend.series8 import cycles, state
 from cncc.frontend.series8.codes import vendor_gate
 from cncc.frontend.series8.cycles import emit, store_levels, tool_length
 from cncc.frontend.series8.layer import LAYER
-from cncc.ir import CycleKind, Linear, Vec6
+from cncc.ir import Linear, Origin, OriginKind, Vec6
 
 if TYPE_CHECKING:
     from cncc.frontend.interp import BlockContext, Interpreter
@@ -112,8 +113,9 @@ def _pattern(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
         it.emit_error(dg.PATTERN_NO_CYCLE, ctx.span, f"{c.name} drills with the canned cycle in force; program "
                                                      "one (G81-G89) first")
         return
-    kind = CycleKind(code.cycle)
-    if kind is CycleKind.CASE_BORE:
+    kind = cycles.kind_of(code.cycle)
+    assert kind is not None  # checked when the cycle code was read
+    if kind is Series8CycleKind.CASE_BORE:
         it.emit_error(dg.PATTERN_BAD_WORD, ctx.span, f"{c.name}: {code.name} stays at depth; a pattern cannot "
                                                      "move between its holes")
         return
@@ -160,13 +162,13 @@ def _frame(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     u0, v0 = corner[p.first], corner[p.second]
     pts = [(u0 + legs[0][0], v0 + legs[0][1]), (u0 + su, v0 + sv),
            (u0 + legs[1][0], v0 + legs[1][1]), (u0, v0)]
-    motion = ops.block_motion(it, ctx)
+    motion, origin = ops.block_motion(it, ctx), Origin(OriginKind.CYCLE, c.name)
     if corner != it.pos:
-        ctx.out.append(Linear(ctx.span, it.frame, it.pos, corner, feed, motion, c.name))
+        ctx.out.append(Linear(ctx.span, it.frame, it.pos, corner, feed, motion, origin))
     at = corner
     for q in pts:
         nxt = _place(at, p.first, p.second, q)
-        ctx.out.append(Linear(ctx.span, it.frame, at, nxt, feed, motion, c.name))
+        ctx.out.append(Linear(ctx.span, it.frame, at, nxt, feed, motion, origin))
         at = nxt
     it.pos = at
     st = state.get(it)
