@@ -40,6 +40,7 @@ class Rs274State:
     arc_absolute: bool = False  # G90.1
     inverse_time: bool = False  # G93
     g92_saved_mm: Vec6 = ZERO6  # parameters 5211-5216 (G92.2 keeps them, G92.3 restores)
+    g92_applied: bool = False  # parameter 5210: G92/G52 in force (G92.1/G92.2 clear it, G92.3 sets it)
     stored_mm: dict[int, Vec6] = field(default_factory=dict)  # G28 (1) / G30 (2) in machine coordinates
     g5_pq_mm: tuple[float, float] = (0.0, 0.0)  # P, Q of the last G5 (its end tangent)
     nurbs: list[tuple[float, float, float]] = field(default_factory=list)  # G5.2 control points x, y, weight
@@ -182,6 +183,7 @@ def _set_g92(it: Interpreter, ctx: BlockContext, shift: Vec6) -> None:
 @handler("set_origin_clear", "set_origin_suspend", "set_origin_restore")
 def _g92_x(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     st = state(it)
+    st.g92_applied = c.op == "set_origin_restore"
     if c.op == "set_origin_restore":
         _set_g92(it, ctx, st.g92_saved_mm)
         return
@@ -212,6 +214,7 @@ def _shift_named_axes(it: Interpreter, ctx: BlockContext, shifted: Callable[[int
         if w is not None:
             shift[i] = shifted(i, shift[i], it.reader.axis_value(w))
     state(it).g92_saved_mm = _vec(shift)
+    state(it).g92_applied = True
     _set_g92(it, ctx, _vec(shift))
 
 
@@ -255,6 +258,11 @@ def _g28_1(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     off = it.frame.total_offset_mm
     tool = it.frame.tool_length_mm
     machine = _vec([it.pos[i] + off[i] + (tool if i == 2 else 0.0) for i in range(6)])
+    if state(it).rotation_deg.get(it.frame.work_index):  # XY: the program point placed by the rotated system
+        from cncc.frontend.linuxcnc.rotation import Placement
+
+        xy = Placement.of(it).machine(it.pos[0], it.pos[1])
+        machine = (xy[0], xy[1], machine[2], machine[3], machine[4], machine[5])
     state(it).stored_mm[1 if c.op == "store_home" else 2] = machine
 
 

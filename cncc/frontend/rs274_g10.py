@@ -81,6 +81,7 @@ def _work_entry(it: Interpreter, ctx: BlockContext, table: int, index: int) -> N
     old = it.options.work_offsets_mm.get(index, (0.0,) * 6)
     vals = list(old)
     f = it.frame
+    machine_xy = _machine_xy(it)
     for k, letter in enumerate(AXES):
         w = ctx.words.get(letter)
         if w is None:
@@ -89,7 +90,7 @@ def _work_entry(it: Interpreter, ctx: BlockContext, table: int, index: int) -> N
         if table == 2:
             vals[k] = v
         else:  # L20: the current position gets the value v
-            machine = f.total_offset_mm[k] + it.pos[k]
+            machine = machine_xy[k] if k < 2 else f.total_offset_mm[k] + it.pos[k]
             vals[k] = machine - f.local_offset_mm[k] - f.g92_offset_mm[k] - v
     new: Vec6 = (vals[0], vals[1], vals[2], vals[3], vals[4], vals[5])
     it.options.work_offsets_mm[index] = new
@@ -104,6 +105,13 @@ def _work_entry(it: Interpreter, ctx: BlockContext, table: int, index: int) -> N
             it.set_frame(replace(f, work_offset_mm=new))
         ctx.out.append(SetMode(ctx.span, it.frame, "g5x_offset", index))
         ctx.out.append(SetMode(ctx.span, it.frame, "xy_rotation", rotation_deg(it, index)))
+
+
+def _machine_xy(it: Interpreter) -> tuple[float, float]:
+    """The tool's machine XY: the program point placed by the active system's offsets and XY rotation."""
+    from cncc.frontend.linuxcnc.rotation import Placement
+
+    return Placement.of(it).machine(it.pos[0], it.pos[1])
 
 
 def rotation_deg(it: Interpreter, index: int) -> float:

@@ -57,4 +57,17 @@ CASES: dict[str, str | tuple[str, str]] = {
     "g74_with_p": "G21 S500 M4\nF100\nG0 X0 Y0 Z10\nG98 G74 G90 X5 Y0 Z-10 R2 P1\nG80\nM2\n",
     "g87_with_p": "G21 S500 M3\nF100\nG0 X0 Y0 Z10\nG98 G87 G90 X5 Y0 Z2 R-10 Q2 P1 I1 J0 K-5\nG80\nM2\n",
     "tool_not_in_table": "G21\nT1 M6\nM2\n",
+    # parameters read back and (DEBUG,...) text (issue 24)
+    "written_offset_next_g10": "G21\n#5222 = 1\nG10 L2 P1 Z1\nG0 X0\n(DEBUG,#5221 #5222 #5223)\nM2\n",
+    "written_offset_on_select": "G21\n#5241 = 1\nG55\nG0 X0\nM2\n",
+    "readonly_position": "G21\n#5420 = 1\nM2\n",
+    "readonly_tool": "G21\n#5400 = 1\nM2\n",
+    "readonly_named": "G21\n#<_x> = 1\nM2\n",
+    "parameter_out_of_range": "G21\n#5602 = 1\nM2\n",
+    "debug_formats": "G21\n#1=5.75\n(DEBUG,A %.1f #1 %d #1 %f #1 %.12f #1 %%d #1 %x #<nope>)\nM2\n",
+    "msg_keeps_blanks": "G21\n(MSG,  two blanks #1  )\n(DEBUG,x=#1)\nM2\n",
+    "g28_1_parameters": "G20\nG10 L2 P1 X1\nG0 X2 Y3 Z4\nG28.1\nG0 X0\nG30.1\n"
+                        "(DEBUG,#5161 #5162 #5163 #5181 #5182)\nM2\n",
+    "g92_parameters": "G21\nG0 X1\nG92 X0\n(DEBUG,#5210 #5211)\nG92.2\n(DEBUG,#5210 #5211)\nG92.3\n"
+                      "(DEBUG,#5210 #5211)\nG92.1\n(DEBUG,#5210 #5211)\nM2\n",
 }

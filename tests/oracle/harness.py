@@ -4,7 +4,8 @@
 :func:`compare` runs both on the same text and reports the first disagreement:
 
 - traces: the calls in :data:`COMPARED` (motion, offsets, rotation, tool, feed, plane, units,
-  dwell), in order, numbers equal within :data:`TOLERANCE`;
+  dwell, operator messages), in order, numbers equal within :data:`TOLERANCE` (a message's text
+  exactly: its numbers are how ``(DEBUG,...)`` prints parameters);
 - errors: when rs274 stops with an error, cncc must fail too; when rs274's message is one of
   :data:`MESSAGES`, cncc must report that diagnostic code.  When rs274 stops, only the calls
   before its error are compared (it prints the trace up to the failing block).
@@ -27,11 +28,16 @@ COMPARED = frozenset({
     "STRAIGHT_TRAVERSE", "STRAIGHT_FEED", "ARC_FEED", "STRAIGHT_PROBE", "RIGID_TAP",
     "SET_G5X_OFFSET", "SET_G92_OFFSET", "SET_XY_ROTATION", "USE_TOOL_LENGTH_OFFSET",
     "CHANGE_TOOL", "SELECT_TOOL", "SET_FEED_RATE", "SELECT_PLANE", "USE_LENGTH_UNITS", "DWELL",
-    "SET_FEED_MODE", "PROGRAM_END",
+    "SET_FEED_MODE", "PROGRAM_END", "MESSAGE",
 })
+TEXT_CALLS = frozenset({"MESSAGE"})  # compared as one string, blanks included
 
 # rs274's error message (first line after "executing") -> the diagnostic code cncc reports.
-MESSAGES: dict[str, str] = {}
+MESSAGES: dict[str, str] = {
+    "Parameter is readonly": "E0303",
+    "Cannot assign to read-only parameter": "E0303",
+    "Parameter number out of range": "E0302",
+}
 
 _CALL = re.compile(r"^\s*(?:\d+\s+)?N\S*\s+([A-Z_0-9]+)\((.*)\)\s*$")
 
@@ -55,6 +61,9 @@ def parse_trace(text: str) -> list[Call]:
     for line in text.splitlines():
         m = _CALL.match(line)
         if m is None or m.group(1) not in COMPARED:
+            continue
+        if m.group(1) in TEXT_CALLS:
+            calls.append((m.group(1), (m.group(2),)))
             continue
         args = tuple(a.strip() for a in re.split(r"[,\s]+", m.group(2)) if a.strip())
         calls.append((m.group(1), args))

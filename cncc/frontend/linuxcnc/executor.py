@@ -26,9 +26,11 @@ from cncc.frontend.linuxcnc.control import run_oword
 from cncc.frontend.linuxcnc.evaluate import EvalError, Evaluator, Parameters, Scope
 from cncc.frontend.linuxcnc.fastblock import run_plain
 from cncc.frontend.linuxcnc.flow import FlowIndex
+from cncc.frontend.linuxcnc.messages import format_message
+from cncc.frontend.linuxcnc.params import SystemParameters, read_only_number
 from cncc.frontend.linuxcnc.report import Before, Reporter
 from cncc.frontend.parser import Parser
-from cncc.frontend.syntax import Assign, Block, CommentItem, Word
+from cncc.frontend.syntax import Assign, Block, CommentItem, Var, Word
 from cncc.ir import Command, Message
 from cncc.source import SourceFile, Span
 
@@ -60,7 +62,9 @@ class LinuxcncExecutor:
         it.sink = self.sink
         self.it = it
         self.parser = parser
-        self.params = Parameters(system=self._system)
+        self.system = SystemParameters(it, lambda: len(self.stack) - 1)
+        self.params = Parameters(system=self._system, system_number=self.system.number,
+                                 system_write=self.system.write)
         self.ev = Evaluator(self.params)
         self.include_dirs = include_dirs
         self.max_steps = max_steps
@@ -87,20 +91,26 @@ class LinuxcncExecutor:
         self.stopped = True
 
     def _system(self, name: str) -> float | None:
-        it = self.it
-        k = it.frame.units.mm_per_unit
-        axes = {"_x": 0, "_y": 1, "_z": 2, "_a": 3, "_b": 4, "_c": 5}
-        if name in axes:
-            i = axes[name]
-            return it.pos[i] / k if i < 3 else it.pos[i]
-        values = {
-            "_metric": float(k == 1.0), "_imperial": float(k != 1.0),
-            "_absolute": float(not it.modal.incremental), "_incremental": float(it.modal.incremental),
-            "_feed": it.modal.feed or 0.0, "_rpm": it.modal.spindle_rpm,
-            "_current_tool": float(it.modal.tool_loaded), "_selected_tool": float(it.modal.tool_selected),
-            "_value": 0.0, "_value_returned": 0.0, "_line": float(self.line),
-        }
-        return values.get(name)
+        if name == "_line":
+            return float(self.line)
+        if name in ("_value", "_value_returned"):
+            return 0.0  # until a subroutine returns
+        return self.system.name(name)
+
+    def _assign(self, target: Var, value: float) -> None:
+        """``#n = value`` / ``#<name> = value``; LinuxCNC's read-only parameters refuse it."""
+        if target.index is None:
+            name = target.name
+            if name.startswith("_") and (name in ("_line", "_value", "_value_returned")
+                                         or self.system.read_only_name(name)):
+                raise EvalError(dg.MACRO_READ_ONLY, f"#<{name}> is a read-only named parameter", target.start,
+                                target.end, name)
+            self.params.write_name(name, value)
+            return
+        n = self.ev.var_number(target)
+        if read_only_number(n):
+            raise EvalError(dg.MACRO_READ_ONLY, f"#{n} is a read-only parameter", target.start, target.end)
+        self.params.write_number(n, value)
 
     # ---- running
     def run(self, src: SourceFile) -> Iterator[Command]:
@@ -124,6 +134,7 @@ class LinuxcncExecutor:
                     break
                 self._step(fr)
             if self.out:
+                self.system.observe(self.out)
                 yield from self.out
                 self.out = []
 
@@ -173,19 +184,15 @@ class LinuxcncExecutor:
             self.stopped = True
 
     def _block(self, fr: Frame, block: Block) -> None:
-        words = tuple(self._value_word(w) for w in block.words)
-        if self.fast:
+        words = self._drop_g80(tuple(self._value_word(w) for w in block.words))
+        sets = [(s.target, self.ev.number(s.expr)) for s in block.statements if isinstance(s, Assign)]
+        for target, value in sets:
+            self._assign(target, value)
+        if self.fast:  # after every rewrite of the words: the fast path takes them as they run
             plain = run_plain(self.it, block, words)
             if plain is not None:
                 self.out.extend(plain)
                 return
-        words = self._drop_g80(words)
-        sets = [(s.target, self.ev.number(s.expr)) for s in block.statements if isinstance(s, Assign)]
-        for target, value in sets:
-            if target.index is None:
-                self.params.write_name(target.name, value)
-            else:
-                self.params.write_number(self.ev.var_number(target), value)
         comments = self._messages(fr, block)
         m98 = [w for w in words if w.letter == "M" and round(w.value) in (98, 99)]
         if m98:
@@ -231,20 +238,25 @@ class LinuxcncExecutor:
             if m is None:
                 keep.append(c)
                 continue
-            kind, text = m.group(1).upper(), m.group(2).strip()
+            kind, text = m.group(1).upper(), m.group(2)  # the text after the comma as written, blanks too
             span = Span(self.it.source_id, c.start, c.end)
             if kind in ("DEBUG", "PRINT"):
-                text = self._substitute(text, c.start)
+                text = format_message(text, self._read_number, self.params.lookup)
             if kind == "ABORT":  # rs274 stops with the text (parameters substituted) as its error
                 self.fail(dg.PROGRAM_ABORT, span, self._substitute(m.group(2), c.start))
             elif kind == "PRINT":
-                self.sink.emit(dg.LINUXCNC_PRINT, span, text)
+                self.sink.emit(dg.LINUXCNC_PRINT, span, text.strip())
             else:
                 self.out.append(Message(span, self.it.frame, text))
         return tuple(keep)
 
     def _substitute(self, text: str, pos: int) -> str:
         return _PARAM_IN_TEXT.sub(lambda mm: self._format_param(mm.group(0), pos), text)
+
+    def _read_number(self, n: int) -> float:
+        from cncc.frontend.syntax import Num
+
+        return self.ev.read(Var(Num(float(n), False, 0, 0), 0, 0))
 
     def _format_param(self, text: str, pos: int) -> str:
         from cncc.frontend.linuxcnc.builder import param_name
