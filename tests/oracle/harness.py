@@ -37,6 +37,15 @@ MESSAGES: dict[str, str] = {
     "Parameter is readonly": "E0303",
     "Cannot assign to read-only parameter": "E0303",
     "Parameter number out of range": "E0302",
+    "Found 'm98' code with no P-word": "E0316",
+    "Negative l word used": "E0316",
+    "Too many subroutine levels": "E0309",
+    "Nested subroutine definition": "E0350",
+    "Fanuc 'O....' subroutine must be called with 'M98'": "E0386",
+    "'O.... sub' subroutine must be called with 'O.... call'": "E0386",
+    "Fanuc 'O....' subroutine definition must end with 'M99'": "E0386",
+    "'O.... endsub' or 'O.... return' must follow 'O.... sub' subroutine definition": "E0386",
+    "Bug:  Reached convert_stop() from M99 as subprogram return": "E0386",
 }
 
 _CALL = re.compile(r"^\s*(?:\d+\s+)?N\S*\s+([A-Z_0-9]+)\((.*)\)\s*$")
@@ -78,10 +87,17 @@ class Run:
     codes: tuple[str, ...] = ()
 
 
-def run_rs274(text: str, tool_table: str = "", *, exe: Path | None = None) -> Run:
+def _write_files(folder: str, files: dict[str, str] | None) -> None:
+    for name, body in (files or {}).items():
+        (Path(folder) / name).write_text(body)
+
+
+def run_rs274(text: str, tool_table: str = "", *, exe: Path | None = None, files: dict[str, str] | None = None) -> Run:
+    """``files``: subroutine files (``name.ngc``) beside the program, where rs274 looks for them."""
     exe = exe or rs274_path()
     assert exe is not None, "rs274 is not installed (scripts/ensure-rs274.sh)"
     with tempfile.TemporaryDirectory(prefix="cncc-oracle-") as tmp:
+        _write_files(tmp, files)
         prog = Path(tmp) / "prog.ngc"
         prog.write_text(text)
         tbl = Path(tmp) / "tool.tbl"
@@ -112,12 +128,15 @@ def tool_table_mm(table: str) -> str:
     return "\n".join(rows) + "\n"
 
 
-def run_cncc(text: str, tool_table: str = "") -> Run:
+def run_cncc(text: str, tool_table: str = "", files: dict[str, str] | None = None) -> Run:
     from cncc.api import compile_text
     from cncc.diagnostics import Severity
 
     with tempfile.TemporaryDirectory(prefix="cncc-oracle-") as tmp:
         opts: dict[str, object] = {}
+        if files:
+            _write_files(tmp, files)
+            opts["include_dirs"] = [tmp]
         if tool_table:
             tbl = Path(tmp) / "tool.tbl"
             tbl.write_text(tool_table_mm(tool_table))
@@ -166,9 +185,9 @@ def diff_calls(want: list[Call], got: list[Call], *, prefix: bool = False) -> st
     return ""
 
 
-def compare(text: str, tool_table: str = "") -> Verdict:
-    want = run_rs274(text, tool_table)
-    got = run_cncc(text, tool_table)
+def compare(text: str, tool_table: str = "", files: dict[str, str] | None = None) -> Verdict:
+    want = run_rs274(text, tool_table, files=files)
+    got = run_cncc(text, tool_table, files)
     if want.ok != got.ok:
         why = f"rs274 error {want.error!r}" if not want.ok else f"cncc error {got.error!r}"
         return Verdict(False, f"only one fails: {why}", want, got)

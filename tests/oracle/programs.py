@@ -19,6 +19,7 @@ from dataclasses import dataclass
 class Program:
     text: str
     tool_table: str = ""
+    files: tuple[tuple[str, str], ...] = ()  # subroutine files beside the program: (name.ngc, text)
 
 
 # In machine units, which are inches for the stand-alone rs274 (the harness scales them for cncc).
@@ -445,11 +446,75 @@ def messages(rng: random.Random) -> Program:
     return Program(_end(out, rng))
 
 
+# ---- Fanuc-style M98/M99 programs ------------------------------------------------------------------
+def _m98_call(rng: random.Random, labels: list[int]) -> str:
+    call = f"M98 P{rng.choice(labels)}"
+    if rng.random() < 0.6:
+        call += f" L{rng.choice(['1', '2', '3', '[#1]', '[#9 + 1]'])}"  # (L0: rs274 2.9 counts a call level)
+    if rng.random() < 0.04:  # errors: M98 not first, a fraction, a stray Q
+        call = rng.choice([f"G0 X1 {call}", call + ".5", call + " Q1"])
+    return call
+
+
+def m98_subs(rng: random.Random) -> Program:
+    labels = rng.sample([100, 200, 300, 1234], rng.randint(1, 3))
+    out = ["G21 G90 F500", f"#1 = {rng.randint(1, 3)}", "#9 = 1"]
+    for _ in range(rng.randint(1, 4)):
+        out.append(_m98_call(rng, labels))
+        if rng.random() < 0.6:
+            out.append("(DEBUG,main #1 #2 #3 #9 #<_call_level>)")
+        if rng.random() < 0.3:
+            out.append(f"G0 X{num(rng.uniform(-9, 9))}")
+    out.append(rng.choice(["M30", "M2", "M99"]))
+    for i, label in enumerate(labels):
+        out.append(f"O{label}")
+        out += [f"#2 = [#2 + {rng.randint(1, 3)}]", f"G91 G1 X{num(rng.uniform(-5, 5))} Y#1", "G90"]
+        if rng.random() < 0.4:
+            out.append(f"(DEBUG,in{label} #1 #2 #<_call_level>)")
+        if i + 1 < len(labels) and rng.random() < 0.4:
+            out.append(f"M98 P{labels[i + 1]}")  # nested, only downwards: no endless recursion
+        if rng.random() < 0.3:
+            out += [f"o{label + 1} if [#2 GT 4]", "M99", f"o{label + 1} endif"]
+        out.append("#3 = [#3 + 1]")
+        out.append("M99")
+    return Program("\n".join(out) + "\n")
+
+
+# ---- named subroutines in files (o<name> call finds name.ngc) ----------------------------------------
+def file_subs(rng: random.Random) -> Program:
+    names = rng.sample(["edge", "Hole", "pocket", "sq"], rng.randint(1, 3))
+    files = []
+    for name in names:
+        body = [f"O<{name}> sub", "#<_count> = [#<_count> + 1]", f"G91 G1 X[#1 * {rng.randint(1, 3)}] Y#2 F100",
+                "G90", f"(DEBUG,{name.lower()} #1 #2 #<_count> #<_call_level>)"]
+        if rng.random() < 0.4:
+            body.append(f"O<{name}> return [#1 + #2]")
+        body.append(f"O<{name}> endsub")
+        if rng.random() < 0.3:
+            body = ["%", *body, "%"]
+        elif rng.random() < 0.3:
+            body.append("M2")
+        files.append((f"{name.lower()}.ngc", "\n".join(body) + "\n"))
+    out = ["G21 G90", "#<_count> = 0"]
+    if rng.random() < 0.3:
+        out.insert(0, rng.choice(["O<Main>", "O<main program>", "O100"]))
+    for _ in range(rng.randint(1, 4)):
+        name = rng.choice(names)
+        out.append(f"o<{rng.choice([name, name.upper(), name.lower()])}> call [{rng.randint(-3, 3)}] "
+                   f"[{num(rng.uniform(-2, 2))}]")
+        if rng.random() < 0.5:
+            out.append("(DEBUG,main #<_value> #<_value_returned> #<_count>)")
+    if rng.random() < 0.05:
+        out.append("o<missing> call")
+    return Program(_end(out, rng), "", tuple(files))
+
+
 FEATURES: dict[str, Callable[[random.Random], Program]] = {
     "lines": lines, "arcs_ijk": arcs_ijk, "arcs_r": arcs_r, "helix_turns": helix_turns,
     "work_offsets": work_offsets, "rotation": rotation, "g92_g52": g92_offsets, "tool_length": tool_length,
     "cycles": cycles, "cutter_comp": cutter_comp, "owords": owords, "path_feed": path_feed, "syntax": syntax,
-    "parameters": parameters, "messages": messages,
+    "parameters": parameters, "messages": messages, "m98_subs": m98_subs,
+    "file_subs": file_subs,
 }
 
 

@@ -18,8 +18,8 @@ OPEN_CASES = frozenset({"dollar_spindle", "m70_m72", "g7_diameter",
 @pytest.mark.parametrize("name", sorted(CASES))
 def test_case_agrees_with_rs274(name: str) -> None:
     case = CASES[name]
-    text, table = (case, "") if isinstance(case, str) else case
-    v = compare(text, table)
+    text, table, files = (case, "", {}) if isinstance(case, str) else (*case, {}) if len(case) == 2 else case
+    v = compare(text, table, files)
     if name in OPEN_CASES and not v.agree:
         pytest.xfail(v.reason)
     assert v.agree, f"{name}: {v.reason}"

@@ -160,6 +160,11 @@ class LinuxcncExecutor:
                 self.fail(dg.PROGRAM_NO_END, Span(last.source_id, last.end, last.end), "File ended with no percent "
                           "sign" + ("" if self.opened else " or program end"))
         else:
+            if fr.m98_count:  # an O100 program called by M98 that runs to the end of the file: no M99
+                last = fr.index.span(fr.index.blocks[-1])
+                self.fail(dg.PROGRAM_NO_END, Span(last.source_id, last.end, last.end),
+                          f"O{fr.name} called by M98 runs to the end of the file without M99: File ended with no "
+                          "percent sign or program end")
             self.stack.pop()
 
     def _step(self, fr: Frame) -> None:
@@ -184,6 +189,9 @@ class LinuxcncExecutor:
             self.stopped = True
 
     def _block(self, fr: Frame, block: Block) -> None:
+        for st in block.statements:  # rs274 2.9 defines a named parameter (as 0) when it reads its assignment,
+            if isinstance(st, Assign) and st.target.index is None and self.params.lookup(st.target.name) is None:
+                self.params.write_name(st.target.name, 0.0)  # so the line's own reads of it find 0
         words = self._drop_g80(tuple(self._value_word(w) for w in block.words))
         sets = [(s.target, self.ev.number(s.expr)) for s in block.statements if isinstance(s, Assign)]
         for target, value in sets:
@@ -194,14 +202,13 @@ class LinuxcncExecutor:
                 self.out.extend(plain)
                 return
         comments = self._messages(fr, block)
-        m98 = [w for w in words if w.letter == "M" and round(w.value) in (98, 99)]
-        if m98:
-            from cncc.frontend.linuxcnc.control import run_m98
+        if any(w.letter == "M" and round(w.value) in (98, 99) for w in words):
+            from cncc.frontend.linuxcnc.control import m98_block
 
-            rest = tuple(w for w in words if w not in m98 and w.letter not in "PL")
-            self._run_words(block, rest, comments)
-            run_m98(self, fr, block, words, m98[0])
-            return
+            words = m98_block(self, fr, block, words)
+            if not words:
+                self._run_words(block, (), comments)
+                return
         self._run_words(block, words, comments)
 
     def _run_words(self, block: Block, words: tuple[Word, ...], comments: tuple[CommentItem, ...]) -> None:

@@ -64,16 +64,22 @@ class _Matcher:
         self.open: list[tuple[str, str, int]] = []  # (label, keyword, line)
         self.branch_lines: dict[int, list[int]] = {}  # if line -> its branch lines
 
-    def error(self, line: int, message: str) -> None:
-        self.sink.emit(dg.OWORD_STRUCTURE, self.fx.span(self.fx.blocks[line]), message)
+    def error(self, line: int, message: str, code: str = dg.OWORD_STRUCTURE) -> None:
+        self.sink.emit(code, self.fx.span(self.fx.blocks[line]), message)
         self.ok = False
+
+    def _program(self, i: int, label: str) -> None:
+        """A Fanuc-style program number ``O100`` (an M98 target up to its M99); the first one counts."""
+        if any(k == "sub" for _, k, _ in self.open):
+            self.error(i, "Nested subroutine definition")
+        self.fx.programs.setdefault(label, i)
 
     def run(self) -> bool:
         for i, b in enumerate(self.fx.blocks):
             ow = oword_of(b.statements)
             if ow is None:
                 if b.words and b.words[0].letter == "O":  # a plain "O100" line (parsed as a word)
-                    self.fx.programs[str(round(b.words[0].value))] = i
+                    self._program(i, str(round(b.words[0].value)))
                 continue
             self.fx.owords[i] = ow
             if ow.label_expr is None:  # a computed call matches nothing
@@ -91,7 +97,11 @@ class _Matcher:
     def line(self, i: int, ow: OWord) -> None:
         kw, fx = ow.keyword, self.fx
         if kw == "":
-            fx.programs[ow.label] = i
+            self._program(i, ow.label)
+        elif kw in ("endsub", "return") and ow.label in fx.programs and \
+                not any(lb == ow.label and k == "sub" for lb, k, _ in self.open):
+            self.error(i, f"O{ow.label} ... must end with M99, not o{ow.label} {kw} (it is called by M98)",
+                       dg.SUB_STYLE_MIXED)
         elif kw == "sub" and any(k == "sub" for _, k, _ in self.open):
             self.error(i, "Nested subroutine definition")
         elif kw in ("sub", "if", "repeat", "do"):

@@ -69,6 +69,10 @@ _P_M_CODES = frozenset({500, 510, 520, 530, 620, 630, 640, 650, 660, 980})
 _P_CYCLES = frozenset({"drill_dwell", "tap_rs274", "tap_left_rs274", "bore_dwell_stop_rs274", "bore_manual_rs274",
                        "bore_dwell_feed_out_rs274"})
 _P_MODAL_OPS = frozenset({"arc_cw", "arc_ccw", "cubic_spline", "nurbs_begin"})
+_Q_G_CODES = frozenset({50, 100, 640, 730, 760, 830})
+_Q_M_CODES = frozenset({190, 660, 670, 680})
+_Q_CYCLES = frozenset({"peck", "peck_high_speed"})
+_Q_WITHOUT_USER = "Q word with no G5, G10, G64, G73, G76, G83, M19, M66, M67, M68 or user M code that uses it"
 _P_WITHOUT_USER = ("P word with no G2 G3 G4 G10 G64 G5 G5.2 G76 G82 G86 G88 G89 or M50 M51 M52 M53 M62 M63 M64 M65 "
                    "M66 M98 or user M code to use it")
 
@@ -129,7 +133,21 @@ class Reporter:
                 not self._uses_p(words):
             it.emit_error(dg.CONTROLLER_REJECTS, span, _P_WITHOUT_USER)
             return False
+        if any(w.letter == "Q" for w in words) and it.dialect.option("p_word_check", False) and \
+                not self._uses_q(words):
+            it.emit_error(dg.CONTROLLER_REJECTS, span, _Q_WITHOUT_USER)
+            return False
         return True
+
+    def _uses_q(self, words: tuple[Word, ...]) -> bool:
+        """rs274's check_other_codes for Q: a code that reads it in the block, or G73/G83 in force."""
+        for w in words:
+            v = round(w.value * 10)
+            if (w.letter == "G" and v in _Q_G_CODES) or (w.letter == "M" and (v in _Q_M_CODES or 1000 <= v < 2000)):
+                return True
+        motion = any(w.letter == "G" and (c := self.it.dialect.code("G", round(w.value * 10))) is not None
+                     and c.group in ("motion", "cycle") for w in words)
+        return not motion and self.it.modal.cycle in _Q_CYCLES
 
     def _in_cycle(self, words: tuple[Word, ...]) -> bool:
         """The block runs a canned cycle: a cycle code in it, or the cycle in force and no other motion code."""
