@@ -120,4 +120,10 @@ CASES: dict[str, str | tuple[str, str] | tuple[str, str, dict[str, str]]] = {
                               {"sq.ngc": "O<sq> sub\nG0 X#1\nO<sq> return [5]\nO<sq> endsub\n"}),
     "named_program_with_blanks": "O<my program>\nG21\nG0 X1\nM2\n",
     "global_defined_by_assignment": "G21\n#<_g> = [#<_g> + 1]\n(DEBUG,#<_g>)\nM2\n",
+    # LinuxCNC 2.9 bug (allow.toml): the skipped outer break in the inner while ends the do loop at the continue
+    "skipped_break_ends_do_loop": ("G21\no100 do\n#1=[#1+1]\no110 while [#2 LT 3]\n#2=[#2+1]\no160 if [#2 EQ 3]\n"
+                                   "o100 continue\no160 endif\no161 if [0]\no100 break\no161 endif\no110 endwhile\n"
+                                   "G0 X#1 Y#2\no100 while [#1 LT 2]\nM2\n"),
+    "break_in_repeat": "G21\no1 repeat [3]\no2 repeat [2]\no3 if [0]\no2 break\no3 endif\nG91 G0 X1\no2 endrepeat\n"
+                       "o1 endrepeat\nM2\n",
 }

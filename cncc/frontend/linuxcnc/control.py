@@ -102,6 +102,12 @@ def _loop_word(ex: LinuxcncExecutor, fr: Frame, i: int, ow: OWord, args: list[fl
         fr.pc = lp.head
         return
     if kw == "repeat":
+        jump = fx.repeat_jumps.get(i)
+        if jump is not None:
+            ex.fail(dg.OWORD_STRUCTURE, fx.span(fx.blocks[jump]), f"no matching while/do label: 'o{ow.label} "
+                    f"{fx.owords[jump].keyword}' (o{ow.label} is a repeat loop: break and continue are for while "
+                    "and do)")
+            return
         left = fr.repeats.get(i)
         if left is None:
             left = round(args[0]) if args else 0

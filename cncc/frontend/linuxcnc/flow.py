@@ -37,6 +37,7 @@ class FlowIndex:
     loops: list[Loop] = field(default_factory=list)
     loop_at: dict[int, Loop] = field(default_factory=dict)  # head and end lines -> loop
     programs: dict[str, int] = field(default_factory=dict)  # bare O<n> (M98 targets) -> line
+    repeat_jumps: dict[int, int] = field(default_factory=dict)  # repeat line -> a break/continue of its label inside
 
     def span(self, b: Block) -> Span:
         return Span(self.src.source_id, b.start, b.end)
@@ -139,6 +140,11 @@ class _Matcher:
 
     def _loop(self, label: str, kind: str, head: int, end: int) -> None:
         lp = Loop(label, kind, head, end)
+        if kind == "repeat":  # LinuxCNC 2.9 has break and continue for while and do loops only
+            jump = next((k for k in range(head + 1, end) if (ow := self.fx.owords.get(k)) is not None
+                         and ow.label == label and ow.keyword in ("break", "continue")), None)
+            if jump is not None:
+                self.fx.repeat_jumps[head] = jump
         self.fx.loops.append(lp)
         self.fx.loop_at[head] = lp
         self.fx.loop_at[end] = lp
