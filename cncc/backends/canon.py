@@ -90,7 +90,7 @@ def canon_lines(cmds: Iterable[Command], *, initial_frame: Frame | None = None,
     last_g5x, last_g92 = g5x, g92
     skip = 0  # commands folded into one call (RIGID_TAP, NURBS_FEED) that are not written
     offsets: dict[int, tuple[Frame, tuple[str, str]]] = {}  # frames are shared: format once each
-    for c in cmds:
+    for c in _unwrapped(cmds):
         if skip:
             skip -= 1
             continue
@@ -118,6 +118,10 @@ def canon_lines(cmds: Iterable[Command], *, initial_frame: Frame | None = None,
             case FeedRate():
                 feed = c.feed / frame.units.mm_per_unit if fmt.feed_in_program_units else c.feed
                 yield PREFIX + f"SET_FEED_RATE({_f(feed)})"
+            case SetMode(name="interpreter_report"):
+                text = fmt.comments.get(str(c.value))
+                if text is not None:
+                    yield PREFIX + f'COMMENT("{text}")'
             case SetMode(name="rigid_tap" | "nurbs_feed") if fmt.has(c.name):
                 skip = int(c.value[-1])
                 yield from _lines(fmt, c.name, **_folded_fields(c))
@@ -134,6 +138,16 @@ def canon_lines(cmds: Iterable[Command], *, initial_frame: Frame | None = None,
                 key, fields = _other(c)
                 yield from _lines(fmt, key, **fields)
     yield from _lines(fmt, "end_of_trace")
+
+
+def _unwrapped(cmds: Iterable[Command]) -> Iterator[Command]:
+    """``cmds`` with the commands of each ``SetMode("trace_only", commands)`` in its place: calls that
+    only the interpreter's trace shows (LinuxCNC's resets at M2), not the program's own."""
+    for c in cmds:
+        if isinstance(c, SetMode) and c.name == "trace_only":
+            yield from c.value
+        else:
+            yield c
 
 
 def _lines(fmt: CanonFormat, key: str, **fields: Any) -> Iterator[str]:

@@ -126,4 +126,7 @@ CASES: dict[str, str | tuple[str, str] | tuple[str, str, dict[str, str]]] = {
                                    "G0 X#1 Y#2\no100 while [#1 LT 2]\nM2\n"),
     "break_in_repeat": "G21\no1 repeat [3]\no2 repeat [2]\no3 if [0]\no2 break\no3 endif\nG91 G0 X1\no2 endrepeat\n"
                        "o1 endrepeat\nM2\n",
+    # the interpreter's reports and M2 resets (tests/backends/test_linuxcnc_trace_only.py)
+    "interpreter_reports": ("G21 G17 G90 F100\nG40 G80\nG1 X1\nG54\nG91 G1 X1\nG90\nG90.1\nG91.1\nG98\nG99\n"
+                            "M3 S100\nM8\nG81 X1 Y1 Z-1 R1\nG80\nG93 G1 X3 F2\nG94 F20\nG95 F1\nG94 F20\nG1 X2\nM2\n"),
 }

@@ -70,7 +70,7 @@ class LinuxcncExecutor:
         self.max_steps = max_steps
         self.max_depth = int(dialect.option("max_call_depth", 10))
         self.stop_on_error = bool(dialect.option("stop_on_error", True))
-        self.comments = {str(k): str(v) for k, v in dialect.raw.get("canon_comments", {}).items()}
+        self.comments = {str(k): str(v) for k, v in dialect.raw.get("canon", {}).get("comments", {}).items()}
         if not dialect.option("interpreter_comments", True):
             self.comments = {}
         self.reporter = Reporter(it, self.comments)

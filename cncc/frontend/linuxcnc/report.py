@@ -5,7 +5,8 @@ the mode changes.  LinuxCNC's interpreter calls the canonical functions for ever
 such code it reads, and adds calls of its own.  :func:`after_block` edits the IR of
 one executed block (``out[at:]``) so that the canon trace reads as ``rs274 -g``'s:
 
-- ``COMMENT("interpreter: ...")`` lines (the dialect's ``[canon_comments]``): feed
+- ``COMMENT("interpreter: ...")`` lines (the dialect's ``[canon.comments]``, recorded as
+  ``SetMode("interpreter_report", key)`` and written by the canon backend): feed
   mode, cutter compensation, G80, G98/G99 every time; distance modes on a change;
   a work-system code that does not change the system;
 - ``SELECT_PLANE``/``USE_LENGTH_UNITS`` for G17-G19/G20-G21 even when unchanged;
@@ -14,7 +15,8 @@ one executed block (``out[at:]``) so that the canon trace reads as ``rs274 -g``'
 - canned cycles: ``CANON_EXACT_PATH`` for the cycle and the path mode restored after
   it; a start below R first rises to R, which becomes the cycle's initial level;
 - M2/M30: the resets (G54, XY plane, units-per-minute feed 0, spindle stop, coolant
-  off) before ``PROGRAM_END``.
+  off) before ``PROGRAM_END``, wrapped in one ``SetMode("trace_only", commands)``: only
+  the canon trace writes them (a translation's M02 does its own resets).
 """
 
 from __future__ import annotations
@@ -53,7 +55,11 @@ from cncc.source import Span
 if TYPE_CHECKING:
     from cncc.frontend.interp import Interpreter
 
-# op -> [canon_comments] key, reported every time the code is read
+# The trace-only IR records (written by the canon backend, ignored by the others).
+REPORT = "interpreter_report"  # value: a [canon.comments] key: LinuxCNC prints COMMENT("interpreter: ...")
+TRACE_ONLY = "trace_only"  # value: commands that only LinuxCNC's trace shows (the M2/M30 resets)
+
+# op -> [canon.comments] key, reported every time the code is read
 _ALWAYS = {"comp_off": "comp_off", "comp_left": "comp_left", "comp_right": "comp_right",
            "comp_left_dynamic": "comp_left", "comp_right_dynamic": "comp_right",
            "inverse_time": "inverse_time", "feed_per_min_rs274": "per_min", "feed_per_rev_rs274": "per_rev",
@@ -180,7 +186,7 @@ class Reporter:
     def after_block(self, span: Span, words: tuple[Word, ...], out: list[Command], at: int, before: Before) -> None:
         it = self.it
         ops = [c.op for c in (it.dialect.code("G", round(w.value * 10)) for w in words if w.letter == "G") if c]
-        added: list[tuple[int, Command]] = [(_COMMENT_STAGE[k], Comment(span, it.frame, self.comments[k]))
+        added: list[tuple[int, Command]] = [(_COMMENT_STAGE[k], SetMode(span, it.frame, REPORT, k))
                                             for k in self._comment_keys(ops, before) if k in self.comments]
         added += self._repeated_modes(span, ops, out[at:])
         stages = {id(cmd): stage for stage, cmd in added}
@@ -326,7 +332,7 @@ class Reporter:
                    Spindle(span, it.frame, SpindleState.OFF, 0.0), SetMode(span, it.frame, "spindle_mode", 0.0)]
         if self.flood or self.mist:
             resets.append(Coolant(span, it.frame, CoolantState.OFF))
-        out[k:k + 1] = [*resets, replace(out[k], frame=it.frame)]
+        out[k:k + 1] = [SetMode(span, resets[0].frame, TRACE_ONLY, tuple(resets)), replace(out[k], frame=it.frame)]
 
     def _track_coolant(self, out: list[Command]) -> None:
         for c in out:
@@ -354,6 +360,8 @@ def _stage(c: Command, known: dict[int, int] | None = None) -> int:
     match c:
         case Comment():
             return 1
+        case SetMode(name="interpreter_report"):
+            return 1
         case FeedRate():
             return 3
         case SpindleSpeed():
@@ -379,7 +387,7 @@ def _place(out: list[Command], at: int, stage: int, cmd: Command, known: dict[in
     """Insert ``cmd`` (of ``stage``) into ``out[at:]``, which is sorted by stage: a comment before
     the calls of its stage, anything else after them; its index.  ``cmd`` takes the frame of
     the command before it, so that the canon trace reports no offset change early."""
-    comment = isinstance(cmd, Comment)
+    comment = isinstance(cmd, Comment) or (isinstance(cmd, SetMode) and cmd.name == REPORT)
     k = next((i for i in range(at, len(out)) if _stage(out[i], known) > stage
               or (comment and _stage(out[i], known) == stage)), len(out))
     neighbour = out[k - 1] if k > at else (out[k] if k < len(out) else None)
