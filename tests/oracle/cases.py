@@ -129,4 +129,7 @@ CASES: dict[str, str | tuple[str, str] | tuple[str, str, dict[str, str]]] = {
     # the interpreter's reports and M2 resets (tests/backends/test_linuxcnc_trace_only.py)
     "interpreter_reports": ("G21 G17 G90 F100\nG40 G80\nG1 X1\nG54\nG91 G1 X1\nG90\nG90.1\nG91.1\nG98\nG99\n"
                             "M3 S100\nM8\nG81 X1 Y1 Z-1 R1\nG80\nG93 G1 X3 F2\nG94 F20\nG95 F1\nG94 F20\nG1 X2\nM2\n"),
+    "g95_without_spindle_speed": "G21 F300\nG95\nG1 X1 F2\nM2\n",
+    "g95_without_feed": "G21 F300\nG95\nG1 X1\nM2\n",
+    "g95_s0_in_block": "G21 F300\nS100 M3\nG95 F1\nG1 X1\nG1 X2 S0\nM2\n",
 }

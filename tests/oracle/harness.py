@@ -46,6 +46,7 @@ MESSAGES: dict[str, str] = {
     "Fanuc 'O....' subroutine definition must end with 'M99'": "E0386",
     "'O.... endsub' or 'O.... return' must follow 'O.... sub' subroutine definition": "E0386",
     "Bug:  Reached convert_stop() from M99 as subprogram return": "E0386",
+    "Cannot feed with zero spindle speed in feed per rev mode": "E0260",
 }
 
 _CALL = re.compile(r"^\s*(?:\d+\s+)?N\S*\s+([A-Z_0-9]+)\((.*)\)\s*$")

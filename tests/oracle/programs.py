@@ -357,11 +357,12 @@ def syntax(rng: random.Random) -> Program:
 _OFFSET_PARAMS = [5210, 5211, 5212, 5213, 5214, 5220, *range(5221, 5231), 5241, 5242, 5243, 5250, 5261, 5262,
                   5281, 5301, 5321, 5341, 5361, 5381, 5390, 5161, 5162, 5163, 5181, 5182, 5183]
 _POSITION_PARAMS = [*range(5420, 5429), 5400, 5403, 5410]
+# (#<_abs_z> left out: after G43 and a G20/G21 change rs274 2.9 adds the tool length in the old units)
 _NAMED_PARAMS = ["_line", "_motion_mode", "_plane", "_ccomp", "_metric", "_imperial", "_absolute", "_incremental",
                  "_inverse_time", "_units_per_minute", "_units_per_rev", "_coord_system", "_tool_offset",
                  "_retract_r_plane", "_retract_old_z", "_spindle_rpm_mode", "_spindle_css_mode",
                  "_ijk_absolute_mode", "_spindle_on", "_spindle_cw", "_mist", "_flood", "_feed", "_rpm", "_x", "_y",
-                 "_z", "_a", "_b", "_c", "_u", "_abs_x", "_abs_y", "_abs_z", "_abs_a", "_value",
+                 "_z", "_a", "_b", "_c", "_u", "_abs_x", "_abs_y", "_abs_a", "_value",
                  "_value_returned", "_call_level", "_vmajor", "_vminor", "_task"]
 
 

@@ -143,7 +143,24 @@ class Reporter:
                 not self._uses_q(words):
             it.emit_error(dg.CONTROLLER_REJECTS, span, _Q_WITHOUT_USER)
             return False
+        if self._feeds_per_rev_without_speed(words):
+            it.emit_error(dg.ZERO_FEED, span, "Cannot feed with zero spindle speed in feed per rev mode")
+            return False
         return True
+
+    def _feeds_per_rev_without_speed(self, words: tuple[Word, ...]) -> bool:
+        """A feed move in G95 (the block's or the mode in force) with a feed rate but no spindle speed (S0 or
+        never set); without a feed rate rs274 reports that first."""
+        it = self.it
+        tenths = {round(w.value * 10) for w in words if w.letter == "G"}
+        per_rev = 950 in tenths or (it.modal.per_rev and not tenths & {930, 940})
+        rpm = next((w.value for w in words if w.letter == "S"), it.modal.spindle_rpm)
+        feed = next((w.value for w in words if w.letter == "F"), None if tenths & {940, 950} else it.modal.feed)
+        if not per_rev or rpm != 0 or not feed or not any(w.letter in "XYZABC" for w in words):
+            return False
+        motions = [t for t in tenths if t in (0, 10, 20, 30)]
+        return (motions[0] != 0) if motions else (it.modal.motion in ("linear", "arc_cw", "arc_ccw")
+                                                   and not it.modal.cycle and not tenths & {800})
 
     def _uses_q(self, words: tuple[Word, ...]) -> bool:
         """rs274's check_other_codes for Q: a code that reads it in the block, or G73/G83 in force."""
