@@ -18,7 +18,6 @@ from typing import Any
 from cncc.backends.canon_format import CanonFormat
 from cncc.ir import (
     Arc,
-    Aux,
     Command,
     Comment,
     Coolant,
@@ -41,7 +40,6 @@ from cncc.ir import (
     ToolChange,
     Units,
     Vec6,
-    Wait,
 )
 
 PREFIX = " N..... "
@@ -118,26 +116,30 @@ def canon_lines(cmds: Iterable[Command], *, initial_frame: Frame | None = None,
             case FeedRate():
                 feed = c.feed / frame.units.mm_per_unit if fmt.feed_in_program_units else c.feed
                 yield PREFIX + f"SET_FEED_RATE({_f(feed)})"
-            case SetMode(name="interpreter_report"):
-                text = fmt.comments.get(str(c.value))
-                if text is not None:
-                    yield PREFIX + f'COMMENT("{text}")'
+            case SetMode(name="interpreter_report") | Comment() | Message():
+                yield from _text_call(c, fmt)
             case SetMode(name="rigid_tap" | "nurbs_feed") if fmt.has(c.name):
                 skip = int(c.value[-1])
                 yield from _lines(fmt, c.name, **_folded_fields(c))
             case SetMode():
                 yield from _set_mode(c, last_g5x, last_g92, fmt)
                 last_g5x, last_g92 = _offsets(frame)
-            case Comment():
-                yield PREFIX + f'COMMENT("{c.text}")'
-            case Message():
-                yield PREFIX + f'MESSAGE("{c.text}")'
-            case Aux() | Wait():
-                pass
             case _:
                 key, fields = _other(c)
                 yield from _lines(fmt, key, **fields)
     yield from _lines(fmt, "end_of_trace")
+
+
+def _text_call(c: Command, fmt: CanonFormat) -> Iterator[str]:
+    """COMMENT and MESSAGE calls; an interpreter report is written with its [canon.comments] text."""
+    if isinstance(c, SetMode):
+        text = fmt.comments.get(str(c.value))
+        if text is not None:
+            yield PREFIX + f'COMMENT("{text}")'
+    elif isinstance(c, Comment):
+        yield PREFIX + f'COMMENT("{c.text}")'
+    elif isinstance(c, Message):
+        yield PREFIX + f'MESSAGE("{c.text}")'
 
 
 def _unwrapped(cmds: Iterable[Command]) -> Iterator[Command]:
@@ -222,9 +224,14 @@ def _set_mode(c: SetMode, last_g5x: str, last_g92: str, fmt: CanonFormat) -> Ite
         u = 25.4 if fmt.tool_table_inch else 1.0
         yield from _lines(fmt, "tool_table_entry", tool=tool, x=x_mm / u, z=z_mm / u, diameter=dia_mm / u,
                           front=float(front), back=float(back), orientation=orient)
-    elif c.name == "overrides":  # value: True (on) / False (off)
+    elif c.name in ("overrides", "spindle_mode"):
+        yield from _switch_mode(c, fmt)
+
+
+def _switch_mode(c: SetMode, fmt: CanonFormat) -> Iterator[str]:
+    if c.name == "overrides":  # value: True (on) / False (off)
         yield from _lines(fmt, "overrides_on" if c.value else "overrides_off")
-    elif c.name == "spindle_mode":
+    else:
         yield from _lines(fmt, "spindle_mode", css_max=float(c.value or 0.0))
 
 

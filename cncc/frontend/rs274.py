@@ -259,9 +259,9 @@ def _g28_1(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     tool = it.frame.tool_length_mm
     machine = _vec([it.pos[i] + off[i] + (tool if i == 2 else 0.0) for i in range(6)])
     if state(it).rotation_deg.get(it.frame.work_index):  # XY: the program point placed by the rotated system
-        from cncc.frontend.linuxcnc.rotation import Placement
+        from cncc.frontend.rs274_g10 import machine_xy
 
-        xy = Placement.of(it).machine(it.pos[0], it.pos[1])
+        xy = machine_xy(it)
         machine = (xy[0], xy[1], machine[2], machine[3], machine[4], machine[5])
     state(it).stored_mm[1 if c.op == "store_home" else 2] = machine
 

@@ -13,6 +13,7 @@ grbl); errors use the dialect's controller texts in ``[errors]`` when it has the
 
 from __future__ import annotations
 
+import math
 from dataclasses import replace
 from typing import TYPE_CHECKING
 
@@ -81,7 +82,7 @@ def _work_entry(it: Interpreter, ctx: BlockContext, table: int, index: int) -> N
     old = it.options.work_offsets_mm.get(index, (0.0,) * 6)
     vals = list(old)
     f = it.frame
-    machine_xy = _machine_xy(it)
+    mxy = machine_xy(it)
     for k, letter in enumerate(AXES):
         w = ctx.words.get(letter)
         if w is None:
@@ -90,7 +91,7 @@ def _work_entry(it: Interpreter, ctx: BlockContext, table: int, index: int) -> N
         if table == 2:
             vals[k] = v
         else:  # L20: the current position gets the value v
-            machine = machine_xy[k] if k < 2 else f.total_offset_mm[k] + it.pos[k]
+            machine = mxy[k] if k < 2 else f.total_offset_mm[k] + it.pos[k]
             vals[k] = machine - f.local_offset_mm[k] - f.g92_offset_mm[k] - v
     new: Vec6 = (vals[0], vals[1], vals[2], vals[3], vals[4], vals[5])
     it.options.work_offsets_mm[index] = new
@@ -107,11 +108,15 @@ def _work_entry(it: Interpreter, ctx: BlockContext, table: int, index: int) -> N
         ctx.out.append(SetMode(ctx.span, it.frame, "xy_rotation", rotation_deg(it, index)))
 
 
-def _machine_xy(it: Interpreter) -> tuple[float, float]:
-    """The tool's machine XY: the program point placed by the active system's offsets and XY rotation."""
-    from cncc.frontend.linuxcnc.rotation import Placement
-
-    return Placement.of(it).machine(it.pos[0], it.pos[1])
+def machine_xy(it: Interpreter) -> tuple[float, float]:
+    """The tool's machine XY: the program point placed by the active system's offsets and XY rotation,
+    ``R(theta) (p + g92) + g5x`` (as :class:`cncc.frontend.linuxcnc.rotation.Placement`)."""
+    f = it.frame
+    theta = math.radians(rotation_deg(it, f.work_index))
+    c, s = math.cos(theta), math.sin(theta)
+    u, v = it.pos[0] + f.g92_offset_mm[0], it.pos[1] + f.g92_offset_mm[1]
+    return (c * u - s * v + f.work_offset_mm[0] + f.local_offset_mm[0],
+            s * u + c * v + f.work_offset_mm[1] + f.local_offset_mm[1])
 
 
 def rotation_deg(it: Interpreter, index: int) -> float:

@@ -102,23 +102,29 @@ def _loop_word(ex: LinuxcncExecutor, fr: Frame, i: int, ow: OWord, args: list[fl
         fr.pc = lp.head
         return
     if kw == "repeat":
-        jump = fx.repeat_jumps.get(i)
-        if jump is not None:
-            ex.fail(dg.OWORD_STRUCTURE, fx.span(fx.blocks[jump]), f"no matching while/do label: 'o{ow.label} "
-                    f"{fx.owords[jump].keyword}' (o{ow.label} is a repeat loop: break and continue are for while "
-                    "and do)")
-            return
-        left = fr.repeats.get(i)
-        if left is None:
-            left = round(args[0]) if args else 0
-        if left <= 0:
-            fr.repeats.pop(i, None)
-            fr.pc = lp.end + 1
-        else:
-            fr.repeats[i] = left - 1
+        _repeat(ex, fr, i, ow, args, lp.end)
         return
     if kw == "endrepeat":
         fr.pc = lp.head
+
+
+def _repeat(ex: LinuxcncExecutor, fr: Frame, i: int, ow: OWord, args: list[float], end: int) -> None:
+    """``oN repeat [n]``: the count left is kept per frame; 2.9 has no break/continue for repeat."""
+    fx = fr.index
+    jump = fx.repeat_jumps.get(i)
+    if jump is not None:
+        ex.fail(dg.OWORD_STRUCTURE, fx.span(fx.blocks[jump]), f"no matching while/do label: 'o{ow.label} "
+                f"{fx.owords[jump].keyword}' (o{ow.label} is a repeat loop: break and continue are for while "
+                "and do)")
+        return
+    left = fr.repeats.get(i)
+    if left is None:
+        left = round(args[0]) if args else 0
+    if left <= 0:
+        fr.repeats.pop(i, None)
+        fr.pc = end + 1
+    else:
+        fr.repeats[i] = left - 1
 
 
 def _call(ex: LinuxcncExecutor, fr: Frame, ow: OWord, args: list[float], span: Span) -> None:

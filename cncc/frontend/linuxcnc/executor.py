@@ -22,7 +22,6 @@ from cncc.diagnostics import DiagnosticSink, Related
 from cncc.dialects import Dialect
 from cncc.dialects.errors import ControllerSink, ControllerTexts
 from cncc.frontend.interp import Interpreter
-from cncc.frontend.linuxcnc.control import run_oword
 from cncc.frontend.linuxcnc.evaluate import EvalError, Evaluator, Parameters, Scope
 from cncc.frontend.linuxcnc.fastblock import run_plain
 from cncc.frontend.linuxcnc.flow import FlowIndex
@@ -180,6 +179,8 @@ class LinuxcncExecutor:
         try:
             oword = fr.index.owords.get(i)
             if oword is not None:
+                from cncc.frontend.linuxcnc.control import run_oword
+
                 run_oword(self, fr, i, oword)
             else:
                 self._block(fr, block)
