@@ -139,6 +139,7 @@ class CompileResult:
     timing: Timing | None = None
     trajectory: Any = None
     raw: Result | None = field(default=None, repr=False)  # the driver's result (sink, sources)
+    pass_report: str = ""  # print_after dumps and the time_passes table (docs/api.md)
 
     @property
     def errors(self) -> list[Diagnostic]:
@@ -195,7 +196,8 @@ def compile(text_or_path: str | os.PathLike[str], dialect: str | None = None, ma
         result = compile_files(opts, stdin=stdin)
     to_diagnostics(caught, result.sink)
     out = CompileResult(ok=result.ok, diagnostics=_diagnostics(result), output=result.output,
-                        dialect=next(iter(result.dialects.values()), dialect), raw=result)
+                        dialect=next(iter(result.dialects.values()), dialect), raw=result,
+                        pass_report=result.pass_report)
     if emit == "gcode":
         out.gcode = result.output
     if emit == "timing" and result.runs and result.output.lstrip().startswith("{"):

@@ -86,8 +86,24 @@ def _parser() -> argparse.ArgumentParser:
                    "(lines 'X12 = 1', 'M14 = on', '#1800 = 5')")
     m.add_argument("--write-dir", metavar="DIR",
                    help="the only folder SZGH FILEON/FILEMS may write programs into (default: write nothing)")
+    _pass_arguments(p)
     p.add_argument("--version", action="version", version=f"cncc {__version__}")
     return p
+
+
+def _pass_arguments(p: argparse.ArgumentParser) -> None:
+    """The pass manager's options (cncc/pipeline, docs/architecture.md "Pipeline")."""
+    g = p.add_argument_group("passes (docs/architecture.md, Pipeline)")
+    g.add_argument("-p", "--passes", default="", metavar="SPEC",
+                   help="run these passes instead of the default pipeline, e.g. "
+                        "-p 'expand-cycles,arc-check{repair=true}' (an unknown name lists the passes)")
+    g.add_argument("--verify-each", action="store_true",
+                   help="after every pass check the IR: motions continuous, spans inside the file, "
+                        "identity frames after to-machine (E0992)")
+    g.add_argument("--print-after", action="append", default=[], metavar="NAME",
+                   help="print the IR after pass NAME (as --emit=ir) to stderr; repeatable, or NAME,NAME")
+    g.add_argument("--print-file", metavar="FILE", help="write the --print-after dumps to FILE instead")
+    g.add_argument("--time-passes", action="store_true", help="print the CPU time of every pass on stderr")
 
 
 def _value(text: str) -> Any:
@@ -247,6 +263,9 @@ def build_options(ns: argparse.Namespace, error: Any, rep: Reporting | None = No
             error(f"--target-option {item}: expected NAME=VALUE")
         opts.target_options[key.replace("-", "_")] = _value(val)
     opts.decimals_mm, opts.decimals_inch = ns.decimals_mm, ns.decimals_inch
+    opts.passes, opts.verify_each, opts.time_passes = ns.passes, ns.verify_each, ns.time_passes
+    opts.print_after = tuple(n.strip() for item in ns.print_after for n in item.split(",") if n.strip())
+    opts.print_file = ns.print_file
     opts.werror, opts.policy = _warning_options(ns, rep, error)
     opts.given = frozenset(given)
     _check_choices(opts, error)
@@ -386,8 +405,9 @@ def run(opts: Any, rep: Reporting | None = None, ns: argparse.Namespace | None =
         write_output(result.output, opts.output, opts.inputs, result.sink)
     if ns is not None and (ns.write_deps or ns.write_deps_user) and not opts.list_deps:
         write_rules(result, opts, ns)
+    sys.stderr.write(result.pass_report)
     report(result, rep)
-    if any(d.code == dg.BAD_OPTION for d in result.sink):
+    if any(d.code in (dg.BAD_OPTION, dg.BAD_PASS_SPEC) for d in result.sink):
         return 2  # a bad option value (a machine, -f dialect option, --compare ...) is a usage error
     return 1 if result.sink.has_errors else 0
 

@@ -133,6 +133,10 @@ CYCLE_WORDS_NOT_STORED = _define("W0416", W, "cycle data in a block that does no
 CYCLE_LONG_DWELL = _define("W0417", W, "a cycle dwell longer than a minute (is P in the right unit?)")
 CYCLE_BACK_BORE_SWAPPED = _define("W0418", W, "a back bore with R above Z: the tool starts at the lower level")
 CYCLE_RETURN_IN_HOLE = _define("E0419", E, "the level a cycle returns to is inside the hole (initial level too low)")
+LATHE_PROFILE = _define("E0480", E, "a lathe cycle's profile (G70-G72 Q subroutine) cannot be cut: not monotonic, "
+                        "a bad arc or corner, or no progress")
+LATHE_CYCLE_WORDS = _define("E0481", E, "a lathe cycle (G70-G72, G76) word is missing or out of range")
+LATHE_CYCLE_STATE = _define("E0482", E, "a lathe cycle in a state it cannot run in (not G18, cutter compensation on)")
 
 # --- E03xx: macros, variables and subprograms (cncc/frontend/macro) ----------------
 MACRO_STEP_BUDGET = _define("E0301", E, "the program ran past the step budget (an endless loop or recursion?)")
@@ -260,6 +264,11 @@ OUTPUT_IS_INPUT = _define("E0906", E, "the output file would overwrite an input 
 SETTING_ORIGIN = _define("N0907", N, "-v: where a setting came from (command line, modeline, cncc.toml, default)")
 BAD_PROJECT_CONFIG = _define("E0908", E, "a cncc.toml project file is malformed")
 NUMPY_WARNING = _define("W0909", W, "a numerical warning (overflow, invalid value) raised while computing")
+BAD_PASS_SPEC = _define("E0991", E, "-p, --print-after: an unknown pass, an unknown option or a bad value")
+IR_INVARIANT = _define("E0992", E, "--verify-each: a pass broke an IR invariant (continuity, spans, machine frame)")
+
+# dialect data (E0940-E0944)
+UNKNOWN_FRONT_END = _define("E0940", E, "the dialect file names a front end that is not registered")
 
 # --- E0995-E0999: program libraries (cncc batch) ---------------------------------
 BATCH_NO_PROGRAMS = _define("E0995", E, "batch: no program file matches the given folders and patterns")

@@ -12,6 +12,7 @@ import shutil
 import sys
 from collections.abc import Callable, Iterable, Iterator
 from dataclasses import dataclass, field
+from functools import partial
 from typing import IO, Any, TextIO
 
 from cncc import diagnostics as dg
@@ -68,6 +69,12 @@ class Options:
     pulse_format: str = "vcd"  # --emit=pulses: vcd | csv | npz | queue
     pulse_mode: str = "exact"  # --emit=pulses: exact | interp (SZGH 2 ms interpolation)
     verify: bool = True  # -fno-verify: skip the verify pass after plan (timing, pulses)
+    # the pass manager (cncc/pipeline, docs/architecture.md "Pipeline")
+    passes: str = ""  # -p 'name{opt=value},name2': the passes instead of the default pipeline
+    verify_each: bool = False  # --verify-each: check the IR invariants after every pass
+    print_after: tuple[str, ...] = ()  # --print-after=NAME: the IR after these passes
+    print_file: str | None = None  # --print-file=FILE: where --print-after writes (default: stderr)
+    time_passes: bool = False  # --time-passes: the per-pass timing table on stderr
     # the command line (cncc/cli.py): project configuration and what the diagnostics options ask
     project_config: bool = False  # read cncc.toml and the modeline per input (cncc/config.py)
     given: frozenset[str] = frozenset()  # fields set on the command line (they beat cncc.toml and the modeline)
@@ -82,6 +89,7 @@ class Result:
     deps: dict[str, list[str]] = field(default_factory=dict)  # input -> program files its calls loaded (-M)
     runs: list[Any] = field(default_factory=list)  # --emit=timing: the planned columns (cncc.api reads them)
     dialects: dict[str, str] = field(default_factory=dict)  # input -> the dialect it was read in
+    pass_report: str = ""  # --print-after dumps and the --time-passes table (the CLI writes them to stderr)
 
     @property
     def ok(self) -> bool:
@@ -207,12 +215,19 @@ def load_tables(opts: Options, sink: DiagnosticSink) -> tuple[dict[int, Vec6], d
 def front_end(src: SourceFile, dialect: Dialect, machine: MachineModel, opts: Options,
               sink: DiagnosticSink, sources: SourceMap | None = None, deps: list[str] | None = None
               ) -> Iterator[Command]:
-    from cncc.frontend import InterpOptions, lower
+    from cncc.frontend import lower
+
+    return lower(src, dialect, sink, interp_options(opts, machine, sink), macro_options(opts, sink, sources, deps))
+
+
+def interp_options(opts: Options, machine: MachineModel, sink: DiagnosticSink) -> Any:
+    """The interpreter's tables: work offsets, tool lengths and radii, the machine's reference
+    points and M codes, the start position (the CLI, the API and the language server alike)."""
+    from cncc.dialects import code_tenths
+    from cncc.frontend import InterpOptions
 
     work, lengths, radii = load_tables(opts, sink)
     refs = tuple(tuple(r) + (0.0,) * (6 - len(r)) for r in machine.reference_positions_mm) or ((0.0,) * 6,)
-    from cncc.dialects import code_tenths
-
     m_codes = {code_tenths(name[1:]): (m.meaning or "machine function") for name, m in machine.m_codes}
     iopts = InterpOptions(work_offsets_mm=work, tool_lengths_mm=lengths, tool_radii_mm=radii,
                           reference_mm=refs, block_delete=opts.block_delete, strict=opts.strict,  # type: ignore[arg-type]
@@ -220,7 +235,7 @@ def front_end(src: SourceFile, dialect: Dialect, machine: MachineModel, opts: Op
     if opts.start_machine_mm is not None:  # the program position of that point in G54
         m, g54 = tuple(opts.start_machine_mm) + (0.0,) * 6, work.get(1, (0.0,) * 6)
         iopts.start_mm = (m[0] - g54[0], m[1] - g54[1], m[2] - g54[2], m[3] - g54[3], m[4] - g54[4], m[5] - g54[5])
-    return lower(src, dialect, sink, iopts, macro_options(opts, sink, sources, deps))
+    return iopts
 
 
 def macro_options(opts: Options, sink: DiagnosticSink, sources: SourceMap | None,
@@ -280,25 +295,86 @@ def with_line_map(cmds: Iterable[Command], sources: SourceMap) -> Iterator[Comma
         yield cmd
 
 
-def path_passes(cmds: Iterable[Command], dialect: Dialect, machine: MachineModel, opts: Options,
-                sink: DiagnosticSink) -> Iterator[Command]:
-    """The passes that change the programmed path (before lowering to machine coordinates)."""
-    from cncc.dialects.errors import controller_sink
-    from cncc.passes import PassContext, run_pipeline
-    from cncc.passes.arc_check import ArcCheck
-    from cncc.passes.expand_cycles import ExpandCycles
+def pipeline_config(opts: Options, keep: frozenset[str] = frozenset(),
+                    transforms: frozenset[Any] = frozenset()) -> Any:
+    """The pipeline builder's configuration for these options (cncc/pipeline/builder.py)."""
+    from cncc.pipeline import PipelineConfig
 
+    return PipelineConfig(machine_coords=opts.emit in MACHINE_EMITS, repair_arcs=opts.repair_arcs,
+                          keep_cycles=keep, keep_transforms=transforms, spec=opts.passes)
+
+
+def path_passes(cmds: Iterable[Command], dialect: Dialect, machine: MachineModel, opts: Options,
+                sink: DiagnosticSink, manager: Any = None) -> Iterator[Command]:
+    """The path stage of the pipeline (cncc/pipeline/builder.py) over the front end's commands;
+    ``manager``: the compilation's :class:`cncc.pipeline.manager.PassManager` (instrumented)."""
+    from cncc.dialects.errors import controller_sink
+    from cncc.passes import PassContext
+    from cncc.pipeline.builder import path_passes as build_path
+    from cncc.pipeline.manager import PassManager
+    from cncc.pipeline.spec import SpecError
+
+    pm = manager if manager is not None else PassManager()
     ctx = PassContext(sink=controller_sink(sink, dialect.raw.get("errors")), dialect=dialect, machine=machine)
-    tol_abs = float(dialect.option("arc_radius_tolerance_mm", ArcCheck.abs_tol_mm))
-    tol_rel = float(dialect.option("arc_radius_tolerance_rel", ArcCheck.rel_tol))
     keep: frozenset[str] = frozenset()
     transforms: frozenset[Any] = frozenset()
     if opts.emit == "gcode" and not opts.expand:  # translation: keep the cycles the target runs alike
-        cmds, keep, transforms = translation_prepare(cmds, dialect, opts, sink)
-    passes = [ExpandCycles(keep=keep), *frame_passes(dialect, machine_coords=opts.emit in MACHINE_EMITS,
-                                                     keep_transforms=transforms),
-              ArcCheck(abs_tol_mm=max(tol_abs, ArcCheck.abs_tol_mm), rel_tol=tol_rel, repair=opts.repair_arcs)]
-    return run_pipeline(passes, cmds, ctx)
+        cmds, keep, transforms = translation_prepare(pm.source(cmds), dialect, opts, sink)
+    else:
+        cmds = pm.source(cmds)
+    try:
+        passes = build_path(pipeline_config(opts, keep, transforms), dialect)
+    except SpecError as exc:  # compile_files checks the spec first; other callers learn here
+        sink.emit(dg.BAD_PASS_SPEC, NO_SPAN, f"-p '{opts.passes}': {exc.message}")
+        return iter(())
+    return pm.run(passes, cmds, ctx)
+
+
+def check_pipeline(opts: Options, sources: SourceMap, sink: DiagnosticSink) -> bool:
+    """-p and --print-after name known passes with known options (E0991, pointing into the
+    spec, which becomes a source of its own); False after an error."""
+    from cncc.pipeline.builder import pass_names, requests
+    from cncc.pipeline.spec import SpecError
+
+    if opts.passes:
+        try:
+            requests(opts.passes)
+        except SpecError as exc:
+            src = sources.add("<-p>", opts.passes)
+            sink.emit(dg.BAD_PASS_SPEC, Span(src.source_id, exc.start, min(exc.end, len(opts.passes))),
+                      f"-p: {exc.message}")
+            return False
+    unknown = [n for n in opts.print_after if n not in pass_names()]
+    if unknown:
+        sink.emit(dg.BAD_PASS_SPEC, NO_SPAN, f"--print-after={unknown[0]}: unknown pass "
+                                             f"(passes: {', '.join(pass_names())})")
+        return False
+    return True
+
+
+def instrumentation(opts: Options, sources: SourceMap) -> Any:
+    """The pass manager's instruments for --verify-each, --print-after and --time-passes."""
+    from cncc.backends.irdump import dump_ir
+    from cncc.pipeline.manager import Instrumentation
+
+    return Instrumentation(verify_each=opts.verify_each, print_after=frozenset(opts.print_after),
+                           time_passes=opts.time_passes, sources=sources,
+                           printer=lambda cmds: "".join(dump_ir(cmds, sources)))
+
+
+def pass_report(ins: Any, opts: Options, sink: DiagnosticSink) -> str:
+    """The instruments' text for stderr (the dumps go to --print-file when given)."""
+    ins.finish()
+    dumps = "".join(ins.dumps)
+    text = ""
+    if opts.print_file and opts.print_after:  # kept with errors too: --verify-each finds them
+        write_stream(opts.print_file, opts.inputs, sink, lambda fh: fh.write(dumps.encode("utf-8")),
+                     keep_on_errors=True)
+    else:
+        text += dumps
+    if opts.time_passes:
+        text += ins.clock.report()
+    return text
 
 
 def output_dialect(dialect: Dialect, opts: Options, sink: DiagnosticSink) -> Dialect | None:
@@ -337,33 +413,6 @@ def translation_prepare(cmds: Iterable[Command], dialect: Dialect, opts: Options
 
     kept = kept_transforms(cmds, tgt, step_mm)
     return prepare(cmds, tgt, expand, sink, kept), kept_cycle_kinds(tgt), kept
-
-
-def frame_passes(dialect: Dialect, machine_coords: bool, keep_transforms: frozenset[Any] = frozenset()) -> list[Any]:
-    """Polar, scaling, mirror, rotation (program coordinates); then, for the planner's backends,
-    offsets and tool length (machine coordinates); then cutter compensation.
-
-    The canon trace and G-code keep program coordinates: they report offsets and tool length
-    themselves, so ``machine_coords`` is False for them.  ``keep_transforms``: G68, G51.1 and
-    G51 records a G-code target runs itself (left in the frames).
-    """
-    from cncc.passes.cutter_comp import CutterComp
-    from cncc.passes.mirror import MirrorPass
-    from cncc.passes.polar import PolarPass
-    from cncc.passes.rotation import RotationPass
-    from cncc.passes.scaling import ScalingPass
-    from cncc.passes.to_machine import ToMachine
-    from cncc.passes.tool_length import ToolLength
-
-    out: list[Any] = [PolarPass(), ScalingPass(keep=keep_transforms), MirrorPass(keep=keep_transforms),
-                      RotationPass(keep=keep_transforms)]
-    if machine_coords:
-        out += [ToMachine(), ToolLength()]
-    out.append(CutterComp(outer_corner=str(dialect.option("comp_outer_corner", "intersection")),
-                          outer_arc_below_deg=float(dialect.option("comp_outer_arc_below_deg", 0.0)),
-                          lookahead=int(dialect.option("comp_lookahead", 2)),
-                          startup=str(dialect.option("comp_startup", "type_a"))))
-    return out
 
 
 def guessed_dialect(src: SourceFile, opts: Options, sink: DiagnosticSink) -> Dialect | None:
@@ -438,6 +487,12 @@ def compile_files(opts: Options, stdin: TextIO | None = None) -> Result:
     if dialect is None or machine is None:
         return result
     machine = apply_dialect_to_machine(machine, opts, sink)
+    if not check_pipeline(opts, sources, sink):
+        return result
+    from cncc.pipeline.manager import PassManager
+
+    ins = instrumentation(opts, sources)
+    manager = PassManager(ins)
     chunks: list[str] = []
     base_dialect, base_machine, base_opts = dialect, machine, opts
     for path in base_opts.inputs or ["-"]:
@@ -446,46 +501,62 @@ def compile_files(opts: Options, stdin: TextIO | None = None) -> Result:
         src = read_input(path, sources, sink, stdin)
         if src is None:
             continue
-        opts, dialect, machine = file_options(base_opts, path, src, sink), base_dialect, base_machine
-        if opts.machine != base_opts.machine or opts.dialect_options != base_opts.dialect_options:
-            model = resolve_machine(opts.machine, sink)
-            if model is None:
-                continue
-            machine = apply_dialect_to_machine(model, opts, sink)
-        if not src.text.strip():
-            sink.emit(dg.EMPTY_PROGRAM, Span(src.source_id, 0, 0), "the program contains no blocks")
-        if opts.dialect is None:  # no -x: guess from the name and contents (reported with -v)
-            guessed = guessed_dialect(src, opts, sink)
-            if guessed is None:  # the -f options do not fit the guessed dialect (reported)
-                continue
-            dialect = guessed
-        elif opts.dialect != base_opts.dialect or opts.dialect_options != base_opts.dialect_options:
-            chosen = resolve_dialect(opts, sink)
-            if chosen is None:
-                continue
-            dialect = chosen
+        setup = _file_setup(base_opts, base_dialect, base_machine, path, src, sink)
+        if setup is None:
+            continue
+        opts, dialect, machine = setup
         result.dialects[src.name] = dialect.name
+        ins.unit = src.name
         deps = result.deps.setdefault(src.name, [])
         if opts.list_deps:  # -M: run the front end, list the subprogram files it loaded
             for _ in until_limit(front_end(src, dialect, machine, opts, sink, sources, deps), sink):
                 pass
             continue
         cmds = path_passes(until_limit(front_end(src, dialect, machine, opts, sink, sources, deps), sink),
-                           dialect, machine, opts, sink)
+                           dialect, machine, opts, sink, manager)
         if opts.expand:
             cmds = with_line_map(cmds, sources)
         if opts.syntax_only:
             for _ in cmds:
                 pass
             continue
-        chunks.extend(run_backend(cmds, src, sources, dialect, machine, opts, sink, keep_runs=result.runs))
+        row = f"backend (--emit={opts.emit})"
+        backend = partial(run_backend, cmds, src, sources, dialect, machine, opts, sink, keep_runs=result.runs,
+                          manager=manager)
+        chunks.extend(manager.timed(manager.call(row, backend), row))
     result.output = "".join(chunks)
+    result.pass_report = pass_report(ins, opts, sink)
     return result
+
+
+def _file_setup(base_opts: Options, base_dialect: Dialect, base_machine: MachineModel, path: str,
+                src: SourceFile, sink: DiagnosticSink) -> tuple[Options, Dialect, MachineModel] | None:
+    """The options, dialect and machine of one input file (its own ``cncc:`` options, a guessed
+    dialect); None when they cannot be resolved (reported)."""
+    opts, dialect, machine = file_options(base_opts, path, src, sink), base_dialect, base_machine
+    if opts.machine != base_opts.machine or opts.dialect_options != base_opts.dialect_options:
+        model = resolve_machine(opts.machine, sink)
+        if model is None:
+            return None
+        machine = apply_dialect_to_machine(model, opts, sink)
+    if not src.text.strip():
+        sink.emit(dg.EMPTY_PROGRAM, Span(src.source_id, 0, 0), "the program contains no blocks")
+    if opts.dialect is None:  # no -x: guess from the name and contents (reported with -v)
+        guessed = guessed_dialect(src, opts, sink)
+        if guessed is None:  # the -f options do not fit the guessed dialect (reported)
+            return None
+        dialect = guessed
+    elif opts.dialect != base_opts.dialect or opts.dialect_options != base_opts.dialect_options:
+        chosen = resolve_dialect(opts, sink)
+        if chosen is None:
+            return None
+        dialect = chosen
+    return opts, dialect, machine
 
 
 def run_backend(cmds: Iterator[Command], src: SourceFile, sources: SourceMap, dialect: Dialect,
                 machine: MachineModel, opts: Options, sink: DiagnosticSink,
-                keep_runs: list[Any] | None = None) -> Iterator[str]:
+                keep_runs: list[Any] | None = None, manager: Any = None) -> Iterator[str]:
     frame0 = Frame(units=Units.INCH if dialect.default_units == "inch" else Units.MM)
     if opts.emit == "canon":
         from cncc.backends.canon import emit_canon
@@ -510,7 +581,7 @@ def run_backend(cmds: Iterator[Command], src: SourceFile, sources: SourceMap, di
             from cncc.backends.timing import annotated_commands
 
             cmd_list = list(cmds)
-            runs = timing_runs(cmd_list, machine, opts, sink)
+            runs = timing_runs(cmd_list, machine, opts, sink, manager)
             cmds = iter(annotated_commands(cmd_list, runs, sources, src.name, dialect))
         return emit_gcode(cmds, target, eopts, sink)
     if opts.emit == "timing":
@@ -518,7 +589,7 @@ def run_backend(cmds: Iterator[Command], src: SourceFile, sources: SourceMap, di
         from cncc.backends.timing.progress import track_source
 
         cmd_list = list(track_source(cmds, len(src.text), src.source_id))
-        runs = timing_runs(cmd_list, machine, opts, sink)
+        runs = timing_runs(cmd_list, machine, opts, sink, manager)
         if keep_runs is not None:
             keep_runs.extend(runs)
         color = opts.output in (None, "-") and sys.stdout.isatty()
@@ -526,7 +597,7 @@ def run_backend(cmds: Iterator[Command], src: SourceFile, sources: SourceMap, di
         return timing_report(cmd_list, runs, src, sources, dialect, opts.report_format, sink,
                              annotate=opts.annotate_time, color=color, width=width)
     if opts.emit == "pulses":
-        return pulse_backend(cmds, machine, opts, sink)
+        return pulse_backend(cmds, machine, opts, sink, manager)
     if opts.emit == "none":
         for _ in cmds:
             pass
@@ -538,38 +609,34 @@ def run_backend(cmds: Iterator[Command], src: SourceFile, sources: SourceMap, di
 
 
 def plan_trajectory(cmds: list[Command], machine: MachineModel, level: int, sink: DiagnosticSink,
-                    verify: bool = True, soft_limits: bool = False, quiet: bool = False) -> tuple[Any, str]:
-    """(Trajectory, how it was made): blend, then the nominal one at -O0, else the planner's;
-    then (``verify``, -O1..-O3) the verify pass, whose violations become diagnostics.  The
-    -O0 nominal estimate is not verified: it has no acceleration by design, runs the
-    programmed feed unclamped and draws arcs as coarse chords for its plots.
+                    verify: bool = True, soft_limits: bool = False, quiet: bool = False,
+                    manager: Any = None, spec: str = "") -> tuple[Any, str]:
+    """(Trajectory, how it was made): the planning stage of the pipeline -- blend, plan at
+    ``level`` (-O0: the nominal estimate), verify (``verify``, -O1..-O3; its violations
+    become diagnostics) -- as :func:`cncc.pipeline.builder.plan_passes` makes it.
 
     ``cmds`` are in machine coordinates (``to-machine`` ran in ``path_passes``); blend keeps
     their order and count, so ``Trajectory.cmd_index`` still indexes ``cmds``.  Soft limits
     are checked only when the work offsets are known (``soft_limits``: ``--offsets`` given):
     with the default zero offsets, program coordinates are no machine positions.
+    ``manager``: the compilation's pass manager; ``spec``: its ``-p`` text.
     """
-    from cncc.machines import effective_corner_rule
     from cncc.passes import PassContext
-    from cncc.passes.blend import Blend
-    from cncc.passes.verify import verify_trajectory
+    from cncc.pipeline import PipelineConfig
+    from cncc.pipeline.builder import plan_passes
+    from cncc.pipeline.manager import PassManager
 
-    blended = list(Blend().run(cmds, PassContext(sink=sink, machine=machine)))
-    if level == 0:
+    pm = manager if manager is not None else PassManager()
+    passes = plan_passes(PipelineConfig(machine_coords=True, spec=spec), level, verify=verify,
+                         soft_limits=soft_limits, quiet=quiet)
+    ctx = PassContext(sink=sink, machine=machine)
+    for _ in pm.run(passes, cmds, ctx, stage="plan"):
+        pass
+    if ctx.trajectory is None:  # a -p plan stage without plan: the nominal estimate, for the report
         from cncc.backends.nominal import nominal_trajectory
 
-        traj, how = nominal_trajectory(blended, machine), "nominal: length / feed"
-    else:
-        from cncc.backends.timing.progress import planning_bar
-        from cncc.passes.plan import plan_commands
-
-        with planning_bar(f"planning -O{level} on {machine.name}", len(blended), quiet) as update:
-            traj = plan_commands(blended, machine, level=level, sink=sink, progress=update)
-        how = f"planned -O{level}"
-    if verify and level > 0:  # -O0 is the CAM-style estimate: no machine plan to check
-        verify_trajectory(traj, blended, machine, sink, corner_rule=effective_corner_rule(machine, level),
-                          check_dynamics=True, jerk_limited=level >= 2, check_soft_limits=soft_limits)
-    return traj, how
+        return nominal_trajectory(cmds, machine), "nominal: length / feed (no plan pass in -p)"
+    return ctx.trajectory, ctx.plan_how
 
 
 PULSE_BINARY_FORMATS = ("npz",)
@@ -594,8 +661,8 @@ def pulse_option_problem(opts: Options, formats: tuple[str, ...], modes: tuple[s
     return ""
 
 
-def pulse_backend(cmds: Iterator[Command], machine: MachineModel, opts: Options, sink: DiagnosticSink
-                  ) -> Iterator[str]:
+def pulse_backend(cmds: Iterator[Command], machine: MachineModel, opts: Options, sink: DiagnosticSink,
+                  manager: Any = None) -> Iterator[str]:
     """--emit=pulses: plan at -O<level>, then step/dir pulses; text to stdout, or streamed into -o FILE."""
     import io
 
@@ -609,7 +676,8 @@ def pulse_backend(cmds: Iterator[Command], machine: MachineModel, opts: Options,
         sink.emit(dg.BAD_OPTION, NO_SPAN, problem)
         return iter(())
     traj, _ = plan_trajectory(cmd_list, machine, opts.opt_level, sink, verify=opts.verify,
-                              soft_limits=opts.offsets_file is not None, quiet=opts.quiet)
+                              soft_limits=opts.offsets_file is not None, quiet=opts.quiet, manager=manager,
+                              spec=opts.passes)
     pauses = event_pauses(cmd_list, traj.cmd_index, machine)  # the timing report's event times
     chunks = generate_pulses(traj, machine, mode=opts.pulse_mode, spans=[c.span for c in cmd_list], sink=sink,
                              pauses=pauses, reversals=reversal_pauses(traj, machine, mode=opts.pulse_mode))
@@ -621,7 +689,8 @@ def pulse_backend(cmds: Iterator[Command], machine: MachineModel, opts: Options,
     return iter(())
 
 
-def timing_runs(cmds: list[Command], machine: MachineModel, opts: Options, sink: DiagnosticSink) -> list[Any]:
+def timing_runs(cmds: list[Command], machine: MachineModel, opts: Options, sink: DiagnosticSink,
+                manager: Any = None) -> list[Any]:
     """One planned Run per report column (``--compare``, else -O<level> and the nominal estimate)."""
     from cncc.backends.timing import Run, default_columns, parse_compare
 
@@ -635,7 +704,8 @@ def timing_runs(cmds: list[Command], machine: MachineModel, opts: Options, sink:
         if model is None:
             return []
         traj, how = plan_trajectory(cmds, model, spec.level, sink, verify=opts.verify,
-                                    soft_limits=opts.offsets_file is not None, quiet=opts.quiet)
+                                    soft_limits=opts.offsets_file is not None, quiet=opts.quiet, manager=manager,
+                                    spec=opts.passes)
         runs.append(Run(spec.label, model, spec.level, traj, how, nominal=spec.level == 0,
                         reversals=reversal_events(traj, model, opts)))
     return runs
@@ -652,9 +722,10 @@ def reversal_events(traj: Any, machine: MachineModel, opts: Options) -> tuple[tu
 
 
 # ---- outputs ---------------------------------------------------------------------------------
-def write_stream(path: str, inputs: list[str], sink: DiagnosticSink, write: Callable[[IO[bytes]], Any]) -> bool:
+def write_stream(path: str, inputs: list[str], sink: DiagnosticSink, write: Callable[[IO[bytes]], Any],
+                 keep_on_errors: bool = False) -> bool:
     """Stream ``write(binary file)`` into ``path`` (atomically for regular files, in place for devices and
-    FIFOs: :mod:`cncc.outfile`); nothing is kept if errors were reported."""
+    FIFOs: :mod:`cncc.outfile`); nothing is kept if errors were reported (unless ``keep_on_errors``)."""
     real = os.path.realpath(path)
     if any(inp != "-" and os.path.exists(inp) and os.path.realpath(inp) == real for inp in inputs):
         sink.emit(dg.OUTPUT_IS_INPUT, NO_SPAN, f"refusing to overwrite the input file {path}")
@@ -662,7 +733,7 @@ def write_stream(path: str, inputs: list[str], sink: DiagnosticSink, write: Call
     from cncc.outfile import write_file
 
     try:
-        return write_file(path, write, lambda: not sink.has_errors)
+        return write_file(path, write, lambda: keep_on_errors or not sink.has_errors)
     except OSError as exc:
         sink.emit(dg.CANNOT_WRITE, NO_SPAN, f"cannot write {path}: {exc.strerror or exc}")
         return False

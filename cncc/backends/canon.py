@@ -18,6 +18,7 @@ from typing import Any
 from cncc.backends.canon_format import CanonFormat
 from cncc.ir import (
     Arc,
+    Aux,
     Command,
     Comment,
     Coolant,
@@ -40,6 +41,7 @@ from cncc.ir import (
     ToolChange,
     Units,
     Vec6,
+    Wait,
 )
 
 PREFIX = " N..... "
@@ -104,42 +106,32 @@ def canon_lines(cmds: Iterable[Command], *, initial_frame: Frame | None = None,
             if g92 != last_g92:
                 yield PREFIX + g92
                 last_g92 = g92
+        line = _one_line(c, fmt)
+        if line is not None:
+            yield PREFIX + line
+            continue
         match c:
-            case Rapid():
-                yield PREFIX + "STRAIGHT_TRAVERSE(" + _pos_text(c.end, frame) + ")"
-            case Linear():
-                yield PREFIX + "STRAIGHT_FEED(" + _pos_text(c.end, frame) + ")"
-            case Arc():
-                yield PREFIX + _arc(c)
-            case Dwell():
-                yield PREFIX + f"DWELL({_f(c.seconds)})"
-            case FeedRate():
-                feed = c.feed / frame.units.mm_per_unit if fmt.feed_in_program_units else c.feed
-                yield PREFIX + f"SET_FEED_RATE({_f(feed)})"
-            case SetMode(name="interpreter_report") | Comment() | Message():
-                yield from _text_call(c, fmt)
+            case SetMode(name="interpreter_report"):
+                yield from _report(c, fmt)
             case SetMode(name="rigid_tap" | "nurbs_feed") if fmt.has(c.name):
                 skip = int(c.value[-1])
                 yield from _lines(fmt, c.name, **_folded_fields(c))
             case SetMode():
                 yield from _set_mode(c, last_g5x, last_g92, fmt)
                 last_g5x, last_g92 = _offsets(frame)
+            case Aux() | Wait():
+                pass
             case _:
                 key, fields = _other(c)
                 yield from _lines(fmt, key, **fields)
     yield from _lines(fmt, "end_of_trace")
 
 
-def _text_call(c: Command, fmt: CanonFormat) -> Iterator[str]:
-    """COMMENT and MESSAGE calls; an interpreter report is written with its [canon.comments] text."""
-    if isinstance(c, SetMode):
-        text = fmt.comments.get(str(c.value))
-        if text is not None:
-            yield PREFIX + f'COMMENT("{text}")'
-    elif isinstance(c, Comment):
-        yield PREFIX + f'COMMENT("{c.text}")'
-    elif isinstance(c, Message):
-        yield PREFIX + f'MESSAGE("{c.text}")'
+def _report(c: SetMode, fmt: CanonFormat) -> Iterator[str]:
+    """An interpreter report, written with its [canon.comments] text (none: not written)."""
+    text = fmt.comments.get(str(c.value))
+    if text is not None:
+        yield PREFIX + f'COMMENT("{text}")'
 
 
 def _unwrapped(cmds: Iterable[Command]) -> Iterator[Command]:
@@ -150,6 +142,27 @@ def _unwrapped(cmds: Iterable[Command]) -> Iterator[Command]:
             yield from c.value
         else:
             yield c
+
+
+def _one_line(c: Command, fmt: CanonFormat) -> str | None:
+    """The call of a move, dwell, feed, comment or message (None for the other commands)."""
+    match c:
+        case Rapid():
+            return "STRAIGHT_TRAVERSE(" + _pos_text(c.end, c.frame) + ")"
+        case Linear():
+            return "STRAIGHT_FEED(" + _pos_text(c.end, c.frame) + ")"
+        case Arc():
+            return _arc(c)
+        case Dwell():
+            return f"DWELL({_f(c.seconds)})"
+        case FeedRate():
+            feed = c.feed / c.frame.units.mm_per_unit if fmt.feed_in_program_units else c.feed
+            return f"SET_FEED_RATE({_f(feed)})"
+        case Comment():
+            return f'COMMENT("{c.text}")'
+        case Message():
+            return f'MESSAGE("{c.text}")'
+    return None
 
 
 def _lines(fmt: CanonFormat, key: str, **fields: Any) -> Iterator[str]:
@@ -204,13 +217,8 @@ def _set_mode(c: SetMode, last_g5x: str, last_g92: str, fmt: CanonFormat) -> Ite
         yield from _lines(fmt, "tool_length_offset", z=frame.tool_length_mm / k)
     elif c.name == "xy_rotation":
         yield from _lines(fmt, "xy_rotation", deg=float(c.value))
-    elif c.name in ("path_mode", "cycle_path_mode"):  # value: PathMode or (mode, P mm, Q naive-CAM mm | None)
-        mode_v, tol_mm, naive_mm = c.value if isinstance(c.value, tuple) else (c.value, 0.0, None)
-        key = {PathMode.EXACT_STOP: "motion_exact_stop", PathMode.EXACT_PATH: "motion_exact_path"}.get(
-            mode_v, "motion_continuous")
-        yield from _lines(fmt, key, tol=tol_mm / k)
-        if naive_mm is not None:
-            yield from _lines(fmt, "naivecam_tolerance", tol=naive_mm / k)
+    elif c.name in ("path_mode", "cycle_path_mode"):
+        yield from _path_mode(c, fmt)
     elif c.name == "feed_mode":
         yield from _lines(fmt, "feed_mode", mode=1 if c.value == "per_rev" else 0)
     elif c.name == "spindle_sync":  # value: pitch in mm per revolution, 0 to end the synchronisation
@@ -218,21 +226,39 @@ def _set_mode(c: SetMode, last_g5x: str, last_g92: str, fmt: CanonFormat) -> Ite
             yield from _lines(fmt, "spindle_sync_on", pitch=float(c.value) / k)
         else:
             yield from _lines(fmt, "spindle_sync_off")
-    elif c.name == "tool_table":  # value: (tool, length mm, diameter mm[, (x mm, front, back, orientation)])
-        tool, z_mm, dia_mm = c.value[:3]
-        x_mm, front, back, orient = c.value[3] if len(c.value) > 3 else (0.0, 0.0, 0.0, 0)
-        u = 25.4 if fmt.tool_table_inch else 1.0
-        yield from _lines(fmt, "tool_table_entry", tool=tool, x=x_mm / u, z=z_mm / u, diameter=dia_mm / u,
-                          front=float(front), back=float(back), orientation=orient)
-    elif c.name in ("overrides", "spindle_mode"):
+    elif c.name == "tool_table":
+        yield from _tool_table(c, fmt)
+    elif c.name in ("overrides", "feed_override", "spindle_mode"):
         yield from _switch_mode(c, fmt)
 
 
 def _switch_mode(c: SetMode, fmt: CanonFormat) -> Iterator[str]:
     if c.name == "overrides":  # value: True (on) / False (off)
         yield from _lines(fmt, "overrides_on" if c.value else "overrides_off")
+    elif c.name == "feed_override":  # value: True (on) / False (off)
+        yield from _lines(fmt, "feed_override_on" if c.value else "feed_override_off")
     else:
         yield from _lines(fmt, "spindle_mode", css_max=float(c.value or 0.0))
+
+
+def _path_mode(c: SetMode, fmt: CanonFormat) -> Iterator[str]:
+    """``path_mode`` / ``cycle_path_mode``; value: PathMode or (mode, P mm, Q naive-CAM mm | None)."""
+    k = c.frame.units.mm_per_unit
+    mode_v, tol_mm, naive_mm = c.value if isinstance(c.value, tuple) else (c.value, 0.0, None)
+    key = {PathMode.EXACT_STOP: "motion_exact_stop", PathMode.EXACT_PATH: "motion_exact_path"}.get(
+        mode_v, "motion_continuous")
+    yield from _lines(fmt, key, tol=tol_mm / k)
+    if naive_mm is not None:
+        yield from _lines(fmt, "naivecam_tolerance", tol=naive_mm / k)
+
+
+def _tool_table(c: SetMode, fmt: CanonFormat) -> Iterator[str]:
+    """``tool_table``; value: (tool, length mm, diameter mm[, (x mm, front, back, orientation)])."""
+    tool, z_mm, dia_mm = c.value[:3]
+    x_mm, front, back, orient = c.value[3] if len(c.value) > 3 else (0.0, 0.0, 0.0, 0)
+    u = 25.4 if fmt.tool_table_inch else 1.0
+    yield from _lines(fmt, "tool_table_entry", tool=tool, x=x_mm / u, z=z_mm / u, diameter=dia_mm / u,
+                      front=float(front), back=float(back), orientation=orient)
 
 
 def _arc(c: Arc) -> str:

@@ -53,6 +53,8 @@ DEFAULTS: dict[str, str | list[str]] = {
     "xy_rotation": [],  # after a work-system change: {deg}  # the spindle mode reset at a program end: {css_max}
     "overrides_on": [],  # M48, and after LinuxCNC's G84
     "overrides_off": [],  # M49, and during LinuxCNC's G84
+    "feed_override_on": [],  # after a synchronised pass of LinuxCNC's G76
+    "feed_override_off": [],  # before it
     "end_of_trace": [],  # lines after the last command (the stand-alone interpreter's resets)
 }
 

@@ -15,6 +15,9 @@ from dataclasses import dataclass, field
 from importlib import resources
 from typing import Any, TypeVar
 
+from cncc.dialects.detection import DetectError, Detection, parse_detection
+from cncc.dialects.lexicon import Lexicon, LexiconError, parse_lexicon
+
 _T = TypeVar("_T")
 
 
@@ -73,6 +76,13 @@ class Dialect:
     # What the controller rejects, with its reason: keys are codes ("G41", "M98") or
     # address letters ("Q", "#"); values the controller's own reason (LSP, translator).
     unsupported: dict[str, str] = field(default_factory=dict)
+    # The front-end plug-in that runs the dialect's programs (``frontend = "series8"``;
+    # cncc/frontend/plugins.py holds the registry).
+    frontend: str = "fanuc"
+    # Detection marks (``[detect]``: extension points, compiled rules), read when the dialect loads.
+    detection: Detection = field(default_factory=lambda: Detection({}, ()))
+    # Keywords (statements, functions, word operators, executor marks): cncc/dialects/lexicon.py.
+    lexicon: Lexicon = field(default_factory=Lexicon)
     # Tables derived from this dialect's data (compiled regexes ...), built on first use by
     # :meth:`derived`.  They live on the object, never in a module-level cache keyed by
     # ``name``: a user dialect file may share a built-in dialect's name (decisions 2026-12-01).
@@ -181,7 +191,35 @@ def parse_dialect(raw: dict[str, Any]) -> Dialect:
         default_feed_mm_rev=float(raw.get("default_feed_mm_rev", 0.0)),
         raw=raw,
         unsupported={_unsupported_key(str(k)): str(v) for k, v in raw.get("unsupported", {}).items()},
+        frontend=_frontend(raw),
+        detection=_detection(name, raw),
+        lexicon=_lexicon(raw),
     )
+
+
+def _lexicon(raw: dict[str, Any]) -> Lexicon:
+    try:
+        return parse_lexicon(str(raw.get("grammar", "fanuc")), raw)
+    except LexiconError as exc:
+        raise DialectError(str(exc)) from None
+
+
+def _detection(name: str, raw: dict[str, Any]) -> Detection:
+    try:
+        return parse_detection(name, raw, tuple(str(e) for e in raw.get("extensions", [])))
+    except DetectError as exc:
+        raise DialectError(str(exc)) from None
+
+
+def _frontend(raw: dict[str, Any]) -> str:
+    """The ``frontend`` key (``checker`` is its old spelling); by default the macro flavour's
+    own front end for LinuxCNC, else the Fanuc family's."""
+    name = raw.get("frontend", raw.get("checker"))
+    if name is None:
+        return "linuxcnc" if raw.get("macro_flavour") == "linuxcnc" else "fanuc"
+    if not isinstance(name, str) or not name.isidentifier():
+        raise DialectError(f"frontend: expected the name of a front end, got {name!r}")
+    return name
 
 
 NOT_INHERITED = frozenset({"name", "title", "base", "remove", "detect"})

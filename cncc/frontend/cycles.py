@@ -20,19 +20,20 @@ The rules follow the SYNTEC manuals (spec syntec-mill-v8.20.md section 4.32, wit
 * the plane cannot change while a cycle is in force.
 
 Machine parameters (SYNTEC Pr4001/Pr4002/Pr4020, SZGH User P1-P7) are dialect
-options; ``docs/cycles.md`` lists them.  The per-interpreter cycle data is a frozen
-snapshot kept in a weak table, replaced on every change.
+options; ``docs/cycles.md`` lists them.  The cycle data is a frozen snapshot in the
+interpreter's ``cycle`` record (:class:`~cncc.frontend.run_state.CycleState`), replaced on
+every change.
 """
 
 from __future__ import annotations
 
-import weakref
-from dataclasses import dataclass, replace
+from dataclasses import replace
 from typing import TYPE_CHECKING, Any
 
 from cncc import diagnostics as dg
 from cncc.dialects import CodeDef
 from cncc.frontend import ops
+from cncc.frontend.run_state import CycleData
 from cncc.frontend.syntax import Word
 from cncc.ir import CompSide, Cycle, CycleKind, Plane, SpindleState, Vec6
 
@@ -46,33 +47,14 @@ _TAPS = (CycleKind.TAP, CycleKind.TAP_LEFT)
 _SHIFTS = (CycleKind.FINE_BORE, CycleKind.BACK_BORE)
 
 
-@dataclass(frozen=True, slots=True)
-class CycleData:
-    """The cycle in force and its stored (modal) data; levels are absolute."""
-
-    code: CodeDef
-    kind: CycleKind
-    plane: Plane
-    initial_mm: float
-    r_mm: float | None = None
-    bottom_mm: float | None = None
-    q_mm: float | None = None  # |Q|: peck depth or boring shift (one shared modal value)
-    dwell_s: float = 0.0
-    pitch_mm: float | None = None  # tapping pitch word (SZGH K)
-
-
-_DATA: weakref.WeakKeyDictionary[Interpreter, CycleData] = weakref.WeakKeyDictionary()
-_SPINDLE: weakref.WeakKeyDictionary[Interpreter, SpindleState] = weakref.WeakKeyDictionary()
-
-
 def cycle_data(it: Interpreter) -> CycleData | None:
     """The cycle data in force, or None when no cycle is active."""
-    data = _DATA.get(it)
+    data = it.cycle.data
     return data if data is not None and it.modal.cycle else None
 
 
 def spindle_state(it: Interpreter) -> SpindleState:
-    return _SPINDLE.get(it, SpindleState.OFF)
+    return it.cycle.spindle
 
 
 def option(it: Interpreter, key: str, default: object) -> object:
@@ -94,7 +76,7 @@ def _select(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
         data = CycleData(code=c, kind=kind, plane=plane, initial_mm=it.pos[plane.normal])
     else:
         data = replace(data, code=c, kind=kind)
-    _DATA[it] = data
+    it.cycle = replace(it.cycle, data=data)
     it.modal = replace(it.modal, cycle=kind.value)
     if not any(k in ctx.words for k in AXES):
         word = ctx.words.get(repeat_letter(it))
@@ -122,7 +104,7 @@ def _drill(it: Interpreter, ctx: BlockContext, end: Vec6) -> None:
     new = _stored(it, ctx, data)
     if repeat is None or new is None:
         return
-    _DATA[it] = new
+    it.cycle = replace(it.cycle, data=new)
     if repeat == 0:
         return
     n = new.plane.normal
@@ -381,7 +363,7 @@ def _guard_plane(inner: ops.Handler) -> ops.Handler:
 def _track_spindle(inner: ops.Handler) -> ops.Handler:
     def tracked(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
         inner(it, ctx, c)
-        _SPINDLE[it] = _SPINDLE_OPS[c.op]
+        it.cycle = replace(it.cycle, spindle=_SPINDLE_OPS[c.op])
 
     return tracked
 
@@ -393,4 +375,3 @@ for _op in _SPINDLE_OPS:
     if _op in ops.HANDLERS:
         ops.HANDLERS[_op] = _track_spindle(ops.HANDLERS[_op])
 
-from cncc.frontend import holes as _holes  # noqa: E402,F401  (registers the pattern op)

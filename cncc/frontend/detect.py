@@ -1,6 +1,7 @@
 """Guess a program's dialect when ``-x`` is not given, by scoring evidence.
 
-The evidence is data: each dialect file has a ``[detect]`` table (``extensions`` with
+The evidence is data: each dialect file has a ``[detect]`` table (read with the dialect,
+:mod:`cncc.dialects.detection`, onto ``Dialect.detection``) (``extensions`` with
 points, and ``[[detect.rule]]`` entries: a regular expression, the points it gives,
 the reason, and the view of the program it searches).  The views are
 
@@ -40,30 +41,6 @@ _CODE_SET_CAP = 3
 _PAREN = re.compile(r"\([^)\n]*\)?")
 _SEMI_LINE = re.compile(r"^\s*;(.*)$", re.M)
 _G_CODE = re.compile(r"(?<![A-Z#<_])G\s*0*(\d{1,3}(?:\.\d)?)(?![\d])", re.I)
-
-
-@dataclass(frozen=True, slots=True)
-class Rule:
-    dialect: str
-    view: str  # "code", "comments", "name"
-    pattern: re.Pattern[str]
-    points: int
-    why: str
-    also: re.Pattern[str] | None = None  # must match too
-    unless: re.Pattern[str] | None = None  # must not match
-    needs: tuple[str, ...] = ()  # upper-case literals one of which must occur (a cheap pre-check)
-
-    def matches(self, seen: dict[str, str]) -> bool:
-        if self.needs:
-            upper = seen.get(self.view + ":upper", "")
-            if not any(n in upper for n in self.needs):
-                return False
-        text = seen.get(self.view, "")
-        if self.pattern.search(text) is None:
-            return False
-        if self.also is not None and self.also.search(text) is None:
-            return False
-        return self.unless is None or self.unless.search(text) is None
 
 
 @dataclass(frozen=True, slots=True)
@@ -120,26 +97,17 @@ def _dialects() -> tuple[Dialect, ...]:
 
 
 @functools.cache
-def _rules() -> tuple[tuple[Rule, ...], dict[str, dict[str, int]]]:
-    rules: list[Rule] = []
+def _builtin_extension_points() -> dict[str, dict[str, int]]:
+    return _extension_points(_dialects())
+
+
+def _extension_points(dialects: tuple[Dialect, ...]) -> dict[str, dict[str, int]]:
+    """File name ending -> {dialect: points}, from each dialect's ``[detect] extensions``."""
     exts: dict[str, dict[str, int]] = {}
-    for d in _dialects():
-        raw = d.raw.get("detect", {})
-        for ext, points in raw.get("extensions", {}).items():
-            exts.setdefault(str(ext).lower(), {})[d.name] = int(points)
-        for entry in raw.get("rule", []):
-            flags = re.M | (0 if entry.get("case", False) else re.I)
-
-            def pattern(key: str, flags: int = flags, entry: dict[str, object] = entry) -> re.Pattern[str] | None:
-                return re.compile(str(entry[key]), flags) if key in entry else None
-
-            main = pattern("pattern")
-            if main is None:
-                raise DialectError(f"{d.name}.toml: detect.rule without a pattern")
-            needs = tuple(str(n).upper() for n in entry.get("needs", []))
-            rules.append(Rule(d.name, str(entry.get("view", "code")), main, int(str(entry["points"])),
-                              str(entry["why"]), pattern("also"), pattern("unless"), needs))
-    return tuple(rules), exts
+    for d in dialects:
+        for ext, points in d.detection.extensions.items():
+            exts.setdefault(ext, {})[d.name] = points
+    return exts
 
 
 def views(name: str, text: str) -> dict[str, str]:
@@ -157,11 +125,15 @@ def _code_set(code: str) -> set[int]:
     return {code_tenths(m.group(1)) for m in _G_CODE.finditer(code)}
 
 
-def detect(name: str, text: str) -> Detection:
-    """Score every dialect for a program called ``name`` with contents ``text``."""
-    rules, exts = _rules()
+def detect(name: str, text: str, dialects: tuple[Dialect, ...] | None = None) -> Detection:
+    """Score every dialect (the built-in ones, or ``dialects``) for a program called ``name``
+    with contents ``text``."""
+    if dialects is None:
+        dialects, exts = _dialects(), _builtin_extension_points()
+    else:
+        exts = _extension_points(dialects)
     seen = views(name, text)
-    scores = {d.name: 0 for d in _dialects()}
+    scores = {d.name: 0 for d in dialects}
     found: list[Evidence] = []
 
     def add(dialect: str, points: int, why: str) -> None:
@@ -173,12 +145,13 @@ def detect(name: str, text: str) -> Detection:
         if lower.endswith(ext):
             for dialect, points in by_dialect.items():
                 add(dialect, points, f"file extension {ext}")
-    for rule in rules:
-        if rule.matches(seen):
-            add(rule.dialect, rule.points, rule.why)
+    for d in dialects:
+        for rule in d.detection.rules:
+            if rule.matches(seen):
+                add(rule.dialect, rule.points, rule.why)
     used = _code_set(seen["code"])
     if used:
-        for d in _dialects():
+        for d in dialects:
             missing = sorted(t for t in used if d.code("G", t) is None)
             if missing:
                 shown = " ".join(f"G{t // 10}" + (f".{t % 10}" if t % 10 else "") for t in missing[:3])

@@ -1,10 +1,11 @@
-"""Front ends of the dialects that need more than the Fanuc-family path.
+"""The front ends registered in :mod:`cncc.frontend.plugins`, one function each.
 
-``lower_checked`` is what :func:`cncc.frontend.lower` calls for a dialect with a
-``checker`` (grbl: every block is checked as the controller would before it runs;
-series8: the SERIES 8 block semantics of :mod:`cncc.frontend.series8`) or with the
-``linuxcnc`` macro flavour (O-word control flow and named parameters,
-run by :mod:`cncc.frontend.linuxcnc`).
+``lower_fanuc`` is the Fanuc family's path (the straight-line fast path, the macro
+executor, the modal interpreter); ``lower_grbl`` checks every block as grbl would
+before it runs; ``lower_linuxcnc`` runs O-word control flow and named parameters
+(:mod:`cncc.frontend.linuxcnc`); ``lower_series8`` the SERIES 8 block semantics of
+:mod:`cncc.frontend.series8`.  Each has the signature of
+:data:`cncc.frontend.plugins.LowerFn`.
 """
 
 from __future__ import annotations
@@ -19,21 +20,41 @@ from cncc.ir import Command
 from cncc.source import SourceFile
 
 
-def lower_checked(src: SourceFile, dialect: Dialect, sink: DiagnosticSink, options: InterpOptions,
-                  macro: object = None) -> Iterator[Command]:
-    if dialect.raw.get("checker") == "series8":
-        from cncc.frontend.series8.front import lower_series8
+def lower_fanuc(src: SourceFile, dialect: Dialect, sink: DiagnosticSink, options: InterpOptions,
+                macro: object = None) -> Iterator[Command]:
+    from cncc.frontend.fastpath import is_straight_line, lower_straight
+    from cncc.frontend.macro import MacroOptions, needs_executor, run_program
+    from cncc.frontend.macro.remap import remaps_cycles
 
-        return lower_series8(src, dialect, sink, options)
+    if is_straight_line(src.text, dialect) and not remaps_cycles(dialect):
+        return lower_straight(src, dialect, sink, options)
+    if needs_executor(src.text, dialect):
+        return run_program(src, dialect, sink, options, macro if isinstance(macro, MacroOptions) else None)
     parser = Parser(dialect, sink, ParseOptions(strict=options.strict))
     interp = Interpreter(dialect, sink, src.source_id, options)
-    if dialect.macro_flavour == "linuxcnc":
-        from cncc.frontend.linuxcnc.executor import run_linuxcnc
+    return interp.run(parser.blocks(src))
 
-        return run_linuxcnc(src, dialect, sink, interp, parser, macro)
-    blocks = parser.blocks(src)
-    if dialect.raw.get("checker") == "grbl":
-        from cncc.frontend.grbl import GrblChecker
 
-        blocks = GrblChecker(interp, src).filter(blocks)
-    return interp.run(blocks)
+def lower_grbl(src: SourceFile, dialect: Dialect, sink: DiagnosticSink, options: InterpOptions,
+               macro: object = None) -> Iterator[Command]:
+    from cncc.frontend.grbl import GrblChecker
+
+    parser = Parser(dialect, sink, ParseOptions(strict=options.strict))
+    interp = Interpreter(dialect, sink, src.source_id, options)
+    return interp.run(GrblChecker(interp, src).filter(parser.blocks(src)))
+
+
+def lower_linuxcnc(src: SourceFile, dialect: Dialect, sink: DiagnosticSink, options: InterpOptions,
+                   macro: object = None) -> Iterator[Command]:
+    from cncc.frontend.linuxcnc.executor import run_linuxcnc
+
+    parser = Parser(dialect, sink, ParseOptions(strict=options.strict))
+    interp = Interpreter(dialect, sink, src.source_id, options)
+    return run_linuxcnc(src, dialect, sink, interp, parser, macro)
+
+
+def lower_series8(src: SourceFile, dialect: Dialect, sink: DiagnosticSink, options: InterpOptions,
+                  macro: object = None) -> Iterator[Command]:
+    from cncc.frontend.series8.front import lower_series8 as run
+
+    return run(src, dialect, sink, options)

@@ -42,8 +42,6 @@ the general path, which reports it."""
 
 _MOTION_OF = {"0": "rapid", "1": "linear", "2": "arc_cw", "3": "arc_ccw"}
 _CODE_OF = {"rapid": "G00", "linear": "G01", "arc_cw": "G02", "arc_ccw": "G03"}
-_KEYWORDS = ("GOTO", "WHILE", "IF", "THEN", "WAT", "OUT", "FILE", "MSG", "STAF", "PP", "SUB", "CALL", "REPEAT",
-             "ELSE", "BREAK", "CONTINUE")
 
 
 def _control_codes(dialect: Dialect) -> re.Pattern[str]:
@@ -90,7 +88,7 @@ def is_straight_line(text: str, dialect: Dialect) -> bool:
     if "#" in text or "[" in text or "=" in text or "<" in text:
         return False
     upper = text.upper()
-    if any(kw in upper for kw in _KEYWORDS):
+    if any(kw in upper for kw in dialect.lexicon.executor_marks):  # the dialect's macro statements
         return False
     return _control_codes(dialect).search(upper) is None
 

@@ -15,6 +15,7 @@ level, non-modal setting codes, motion, then program stops and calls.
 
 from __future__ import annotations
 
+import copy
 from collections.abc import Iterable, Iterator
 from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING
@@ -22,7 +23,9 @@ from typing import TYPE_CHECKING
 from cncc import diagnostics as dg
 from cncc.diagnostics import DiagnosticSink
 from cncc.dialects import CodeDef, Dialect, code_name, code_tenths
-from cncc.frontend.modal import ModalState, Reference
+from cncc.frontend.modal import ModalState
+from cncc.frontend.registry import DEFAULT_ORDER
+from cncc.frontend.run_state import CycleState, LayerRecords, References, RunNotes, TransformState
 from cncc.frontend.syntax import Block, Word
 from cncc.frontend.words import WordReader
 from cncc.ir import (
@@ -41,24 +44,8 @@ from cncc.source import Span
 
 if TYPE_CHECKING:
     from cncc.frontend.ops import HandlerTable
+    from cncc.frontend.rs274_state import Rs274State
 
-# Execution order of the ops within one block (lower runs first).
-ORDER: dict[str, int] = {
-    "feed_per_min": 10, "feed_per_rev": 10, "inverse_time": 10,
-    "dwell": 40,
-    "plane_xy": 50, "plane_zx": 50, "plane_yz": 50,
-    "inch": 55, "metric": 55,
-    "comp_off": 60, "comp_left": 60, "comp_right": 60,
-    "length_plus": 65, "length_minus": 65, "length_off": 65,
-    "work": 70,
-    "exact_stop_mode": 75, "curve_mode": 75, "tapping_mode": 75, "continuous_mode": 75, "exact_stop_once": 75,
-    "absolute": 80, "incremental": 80,
-    "return_initial": 85, "return_r": 85,
-    "css_on": 86, "css_off": 86,
-    "polar_on": 87, "polar_off": 87, "scale_on": 87, "scale_off": 87, "mirror_on": 87, "mirror_off": 87,
-    "rotate_on": 88, "rotate_off": 88,
-}
-DEFAULT_ORDER = 90  # non-modal and motion codes
 AXIS_LETTERS = "XYZABC"
 AXIS_INDEX = {c: i for i, c in enumerate(AXIS_LETTERS)}
 # Ops that take the block's axis words for themselves (so no motion happens).
@@ -98,17 +85,29 @@ class BlockContext:
 
 
 class Interpreter:
-    """Lowers blocks of one dialect to IR commands, keeping modal state."""
+    """Lowers blocks of one dialect to IR commands, keeping modal state.
+
+    The interpreter is the one owner of run state: the fields in ``__slots__`` are all
+    there is (the records of :mod:`cncc.frontend.run_state`, the modal snapshot, frame
+    and position).  Executors that run blocks for another source file or report through
+    another sink say so with :meth:`redirect` instead of replacing ``sink`` or
+    ``source_id``.
+    """
+
+    __slots__ = ("_end_noted", "_motion_cache", "cycle", "dialect", "ended", "extras", "frame", "group_codes",
+                 "handlers", "modal", "notes", "options", "pos", "reader", "refs", "rs274", "sink", "source_id",
+                 "table", "transform")
 
     def __init__(self, dialect: Dialect, sink: DiagnosticSink, source_id: int = 0,
                  options: InterpOptions | None = None, table: HandlerTable | None = None) -> None:
-        from cncc.frontend import ops  # the handler table
+        from cncc.frontend.handler_tables import core_table
 
         self.dialect = dialect
         self.sink = sink
         self.source_id = source_id
-        self.options = options or InterpOptions()
-        self.table = table or ops.core_table()  # a dialect layer passes its own composed table
+        # Its own copy of the tables a program writes (G10, #2001 ...): the caller's stay as given.
+        self.options = _own_tables(options or InterpOptions())
+        self.table = table or core_table()  # a dialect layer passes its own composed table
         self.handlers = self.table.handlers
         units = Units.INCH if dialect.default_units == "inch" else Units.MM
         self.reader = WordReader.for_dialect(dialect, units)
@@ -118,10 +117,13 @@ class Interpreter:
                            held_axes=ALL_HELD)
         self.pos: Vec6 = self.options.start_mm
         o = self.frame.total_offset_mm  # the program start point as a machine position (SZGH G26)
-        self.start_machine_mm: Vec6 = (self.pos[0] + o[0], self.pos[1] + o[1], self.pos[2] + o[2],
-                                       self.pos[3] + o[3], self.pos[4] + o[4], self.pos[5] + o[5])
-        self.saved_machine_mm: Vec6 | None = None  # SZGH G25's point (frontend/saved_points.py)
-        self.reference = Reference()
+        self.refs = References(start_machine_mm=(self.pos[0] + o[0], self.pos[1] + o[1], self.pos[2] + o[2],
+                                                 self.pos[3] + o[3], self.pos[4] + o[4], self.pos[5] + o[5]))
+        self.cycle = CycleState()  # frontend/cycles.py
+        self.transform = TransformState()  # frontend/transforms.py
+        self.rs274: Rs274State | None = None  # frontend/rs274.py, made by the first RS274 op that needs it
+        self.notes = RunNotes()
+        self.extras = LayerRecords()  # dialect layers' records (SERIES 8)
         self.ended = False
         self.group_codes: dict[str, str] = {}
         self._end_noted = False
@@ -186,6 +188,32 @@ class Interpreter:
 
         ops.run_block(self, ctx)
         return out
+
+    def redirect(self, sink: DiagnosticSink | None = None, source_id: int | None = None) -> Redirect:
+        """A context in which the blocks report to ``sink`` and their spans are in file
+        ``source_id`` (an executor running a subprogram file, or a controller's sink);
+        both are restored when it ends."""
+        return Redirect(self, sink, source_id)
+
+    def run_state(self) -> dict[str, object]:
+        """A copy of the run state (every field but the fixed parts: dialect, sink, handler
+        table, caches; of the options only the offset tables, which G10 writes), for
+        checkpoints (``cncc/lsp/incremental.py``); the mutable records are copied, so
+        running on does not change it, and two are equal when the runs are in the same state."""
+        state = {k: _copied(getattr(self, k)) for k in self.__slots__ if k not in _FIXED_FIELDS}
+        o = self.options
+        state[_TABLES] = (dict(o.work_offsets_mm), dict(o.tool_lengths_mm), dict(o.tool_radii_mm))
+        return state
+
+    def restore_run_state(self, state: dict[str, object]) -> None:
+        """Go back to a :meth:`run_state` (which stays usable for another restore)."""
+        for k, v in state.items():
+            if k == _TABLES:
+                assert isinstance(v, tuple)
+                o = self.options
+                o.work_offsets_mm, o.tool_lengths_mm, o.tool_radii_mm = (dict(t) for t in v)
+            else:
+                setattr(self, k, _copied(v))
 
     # ---- helpers used by the handlers
     def emit_error(self, code: str, span: Span, message: str) -> None:
@@ -313,6 +341,53 @@ class Interpreter:
             self.sink.emit(dg.UNKNOWN_G if w.letter == "G" else dg.UNKNOWN_M, self.word_span(w),
                            f"{code_name(w.letter, tenths)} is not a {self.dialect.name} code")
         return cdef
+
+
+_FIXED_FIELDS = frozenset({"dialect", "sink", "source_id", "options", "handlers", "table", "_motion_cache"})
+
+
+_TABLES = "options.tables"  # run_state's key for the offset tables
+
+
+def _own_tables(o: InterpOptions) -> InterpOptions:
+    return replace(o, work_offsets_mm=dict(o.work_offsets_mm), tool_lengths_mm=dict(o.tool_lengths_mm),
+                   tool_radii_mm=dict(o.tool_radii_mm))
+
+
+def _copied(v: object) -> object:
+    if isinstance(v, dict | list | set):
+        return v.copy()
+    if isinstance(v, TransformState | RunNotes | LayerRecords) or (v is not None and not _immutable(v)):
+        return copy.deepcopy(v)
+    return v
+
+
+def _immutable(v: object) -> bool:
+    """Frozen records, numbers, tuples and the like (shared by every copy)."""
+    params = getattr(type(v), "__dataclass_params__", None)
+    return params.frozen if params is not None else isinstance(v, int | float | str | tuple | frozenset | WordReader)
+
+
+class Redirect:
+    """:meth:`Interpreter.redirect`'s context (a class: it is entered once per macro block)."""
+
+    __slots__ = ("_it", "_saved", "_sink", "_source_id")
+
+    def __init__(self, it: Interpreter, sink: DiagnosticSink | None, source_id: int | None) -> None:
+        self._it, self._sink, self._source_id = it, sink, source_id
+        self._saved = (it.sink, it.source_id)
+
+    def __enter__(self) -> Interpreter:
+        it = self._it
+        self._saved = (it.sink, it.source_id)
+        if self._sink is not None:
+            it.sink = self._sink
+        if self._source_id is not None:
+            it.source_id = self._source_id
+        return it
+
+    def __exit__(self, *exc: object) -> None:
+        self._it.sink, self._it.source_id = self._saved
 
 
 def _hold_after_cancel(old: Frame, new: Frame) -> Frame:

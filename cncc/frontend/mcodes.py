@@ -17,7 +17,6 @@ Handlers registered here: ``aux`` (an M code with no modelled effect), ``smoothi
 
 from __future__ import annotations
 
-import weakref
 from dataclasses import replace
 from typing import TYPE_CHECKING
 
@@ -34,9 +33,6 @@ EXTENDED_WORK_BASE = 6
 """G54.1 P1 / G154 P1 is work system 7 (after G54-G59), as Haas's G110 is."""
 
 
-_WARNED: weakref.WeakKeyDictionary[Interpreter, set[int]] = weakref.WeakKeyDictionary()
-
-
 def passes_to_machine(dialect: Dialect) -> bool:
     return str(dialect.option("unknown_m_code", "error")) == "machine"
 
@@ -48,7 +44,7 @@ def machine_m_code(it: Interpreter, w: Word, tenths: int) -> CodeDef | None:
     if known is None and not passes_to_machine(it.dialect):
         return None
     name = code_name("M", tenths)
-    warned = _WARNED.setdefault(it, set())
+    warned = it.notes.m_codes_warned
     if known is None and tenths not in warned:  # once per code and program
         warned.add(tenths)
         it.sink.emit(dg.M_CODE_TO_MACHINE, it.word_span(w),

@@ -8,32 +8,22 @@ program then gets one warning, at the first use, whose message lists the numbers
 
 from __future__ import annotations
 
-import weakref
-from dataclasses import dataclass, field, replace
+from dataclasses import replace
 from typing import TYPE_CHECKING
 
 from cncc import diagnostics as dg
+from cncc.frontend.run_state import OffsetNotes
 from cncc.source import Span
 
 if TYPE_CHECKING:
     from cncc.frontend.interp import Interpreter
 
 
-@dataclass(slots=True)
-class _Missing:
-    table_given: bool
-    names: list[str] = field(default_factory=list)
-    at: int = -1  # index of the warning in the sink
-
-
-_SEEN: weakref.WeakKeyDictionary[Interpreter, _Missing] = weakref.WeakKeyDictionary()
-
-
 def offset_missing(it: Interpreter, span: Span, letter: str, index: int) -> None:
     """Report that offset ``letter``+``index`` (H1, D7) is not in the tool table."""
-    st = _SEEN.get(it)
+    st = it.notes.offsets
     if st is None:
-        st = _SEEN[it] = _Missing(bool(it.options.tool_lengths_mm or it.options.tool_radii_mm))
+        st = it.notes.offsets = OffsetNotes(bool(it.options.tool_lengths_mm or it.options.tool_radii_mm))
     name = f"{letter}{index}"
     if st.table_given:
         it.sink.emit(dg.OFFSET_NOT_IN_TABLE, span, f"{name} is not in the tool table; 0 is used")

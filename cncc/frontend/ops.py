@@ -1,22 +1,32 @@
-"""Handlers of the canonical operations named in the dialect tables.
+"""Handlers of the canonical operations named in the dialect tables, and the block driver.
 
-``HANDLERS`` maps an op name (the ``op`` of a code in ``cncc/dialects/*.toml``) to a
-function ``(interp, ctx, code) -> None``.  ``MOTIONS`` maps a motion mode to the
-function that lowers the block's end point.  Later features register more entries
-(canned cycles, macro calls, transforms) from their own modules.
+The handlers here register into :mod:`cncc.frontend.registry`'s ``HANDLERS`` and
+``MOTIONS`` (re-exported here, with ``handler``, for the modules that add ops: canned
+cycles, transforms, RS274 ...).  This module imports none of them:
+:mod:`cncc.frontend.handler_tables` composes the core table from all of them.
 """
 
 from __future__ import annotations
 
-import functools
-from collections.abc import Callable, Mapping, Sequence
-from dataclasses import dataclass, replace
-from types import MappingProxyType
+from dataclasses import replace
 from typing import TYPE_CHECKING
 
 from cncc import diagnostics as dg
 from cncc.dialects import CodeDef
 from cncc.frontend import arcs
+from cncc.frontend.polar import polar_target
+from cncc.frontend.registry import (
+    BLOCK_HOOKS,
+    DEFAULT_ORDER,
+    HANDLERS,
+    MOTIONS,
+    BlockHook,
+    Handler,
+    HandlerTable,
+    Layer,
+    MotionHandler,
+    handler,
+)
 from cncc.ir import (
     Arc,
     Coolant,
@@ -44,82 +54,8 @@ from cncc.ir.frame import NOT_HELD
 if TYPE_CHECKING:
     from cncc.frontend.interp import BlockContext, Interpreter
 
-Handler = Callable[["Interpreter", "BlockContext", CodeDef], None]
-MotionHandler = Callable[["Interpreter", "BlockContext", Vec6], None]
-BlockHook = Callable[["Interpreter", "BlockContext"], None]
-HANDLERS: dict[str, Handler] = {}
-BLOCK_HOOKS: list[BlockHook] = []  # words without a code (H, D ...)
-MOTIONS: dict[str, MotionHandler] = {}
+
 AXES = "XYZABC"
-
-
-def handler(*ops: str) -> Callable[[Handler], Handler]:
-    def deco(fn: Handler) -> Handler:
-        for op in ops:
-            HANDLERS[op] = fn
-        return fn
-
-    return deco
-
-
-# ---- handler tables per dialect ---------------------------------------------------
-@dataclass(frozen=True, slots=True)
-class HandlerTable:
-    """What one interpreter dispatches through: op handlers, motion handlers, block
-    hooks and the in-block order of ops.  :func:`core_table` is the shared one (the
-    modules above register into it when imported); a dialect layer composes its own
-    copy (:meth:`Layer.compose`) instead of changing the shared one."""
-
-    handlers: Mapping[str, Handler]
-    motions: Mapping[str, MotionHandler]
-    block_hooks: Sequence[BlockHook]
-    order: Mapping[str, int]
-
-
-@functools.cache
-def core_table() -> HandlerTable:
-    """Read-only views of the shared tables (complete once this module is imported)."""
-    from cncc.frontend.interp import ORDER
-
-    return HandlerTable(MappingProxyType(HANDLERS), MappingProxyType(MOTIONS), BLOCK_HOOKS, MappingProxyType(ORDER))
-
-
-class Layer:
-    """A dialect's own handlers, wrappers, hooks and op order over a base table.
-
-    Registering records a step; :meth:`compose` replays the steps on copies of the base
-    table, so the base table and every other dialect's interpreters are untouched."""
-
-    def __init__(self) -> None:
-        self._steps: list[Callable[[dict[str, Handler], dict[str, MotionHandler], list[BlockHook],
-                                    dict[str, int]], None]] = []
-
-    def handler(self, *ops: str) -> Callable[[Handler], Handler]:
-        def deco(fn: Handler) -> Handler:
-            self._steps.append(lambda h, m, b, o: h.update(dict.fromkeys(ops, fn)))
-            return fn
-
-        return deco
-
-    def wrap_handler(self, op: str, wrap: Callable[[Handler], Handler]) -> None:
-        self._steps.append(lambda h, m, b, o: h.__setitem__(op, wrap(h[op])))
-
-    def wrap_motion(self, mode: str, wrap: Callable[[MotionHandler], MotionHandler]) -> None:
-        self._steps.append(lambda h, m, b, o: m.__setitem__(mode, wrap(m[mode])))
-
-    def hook_first(self, hook: BlockHook) -> None:
-        self._steps.append(lambda h, m, b, o: b.insert(0, hook))
-
-    def set_order(self, op: str, rank: int) -> None:
-        self._steps.append(lambda h, m, b, o: o.__setitem__(op, rank))
-
-    def compose(self, base: HandlerTable) -> HandlerTable:
-        handlers, motions = dict(base.handlers), dict(base.motions)
-        hooks, order = list(base.block_hooks), dict(base.order)
-        for step in self._steps:
-            step(handlers, motions, hooks, order)
-        return HandlerTable(MappingProxyType(handlers), MappingProxyType(motions), tuple(hooks),
-                            MappingProxyType(order))
 
 
 # ---- block driver -----------------------------------------------------------------
@@ -128,8 +64,6 @@ _M_ORDER = {"tool_change": 0, "spindle_cw": 1, "spindle_ccw": 1, "spindle_off": 
 
 
 def run_block(it: Interpreter, ctx: BlockContext) -> None:
-    from cncc.frontend.interp import DEFAULT_ORDER
-
     order = it.table.order
     gs = [c for c in ctx.codes if c.letter == "G"]
     ms = [c for c in ctx.codes if c.letter == "M"]
@@ -213,8 +147,6 @@ def _feed_speed_tool(it: Interpreter, ctx: BlockContext) -> None:
 def target(it: Interpreter, ctx: BlockContext) -> Vec6:
     """The block's end point in program coordinates (mm/deg)."""
     if it.frame.polar is not None and "machine_coords" not in ctx.block_flags:
-        from cncc.frontend.transforms import polar_target
-
         return polar_target(it, ctx)
     p = list(it.pos)
     machine = "machine_coords" in ctx.block_flags
@@ -464,32 +396,6 @@ def _units(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
         ctx.out.append(SetMode(ctx.span, it.frame, "units", units))
 
 
-@handler("comp_off")
-def _comp_off(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
-    from cncc.ir import CompSide
-
-    if it.frame.comp_side is not CompSide.OFF:
-        it.set_frame(replace(it.frame, comp_side=CompSide.OFF, comp_radius_mm=0.0, comp_index=0))
-
-
-@handler("length_plus", "length_minus", "length_off")
-def _length(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
-    if c.op == "length_off":
-        value, index = 0.0, 0
-    else:
-        hw = ctx.words.get("H")
-        index = int(hw.value) if hw is not None else it.frame.tool_length_index
-        if hw is not None and (hw.value < 0 or hw.value != int(hw.value)):
-            it.emit_error(dg.BAD_OFFSET_INDEX, it.word_span(hw), "H must be a non-negative integer")
-            return
-        value = it.options.tool_lengths_mm.get(index, 0.0)
-        if c.op == "length_minus":
-            value = -value
-    if value != it.frame.tool_length_mm or index != it.frame.tool_length_index:
-        it.set_frame(replace(it.frame, tool_length_mm=value, tool_length_index=index))
-        ctx.out.append(SetMode(ctx.span, it.frame, "tool_length_offset", value))
-
-
 @handler("work")
 def _work(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     off = it.options.work_offsets_mm.get(c.index, (0.0,) * 6)
@@ -528,13 +434,11 @@ def _css(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     it.modal = it.modal.with_(css=c.op == "css_on")
 
 
-@handler("polar_off", "scale_off", "mirror_off", "rotate_off", "modal_call_off", "cycle_off")
+@handler("modal_call_off", "cycle_off")  # (G15, G50, G50.1, G69 ...: frontend/transforms.py)
 def _off_when_off(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     """Cancel codes are no-ops while the feature they cancel is not in force."""
     if c.op == "cycle_off":
         it.modal = it.modal.with_(cycle="")
-    if c.op == "mirror_off":
-        ctx.axis_used = True
 
 
 @handler("machine_coords")
@@ -619,7 +523,7 @@ def _home_via(it: Interpreter, ctx: BlockContext, c: CodeDef, index: int) -> Non
     flags = tuple(i in named for i in range(6))
     from cncc.frontend.modal import Reference
 
-    it.reference = Reference(mid, flags)
+    it.refs = replace(it.refs, intermediate=Reference(mid, flags))
 
 
 @handler("home")
@@ -644,7 +548,7 @@ def _g29(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     named = _axes_named(ctx)
     if not named:
         return
-    mid = tuple(it.reference.point[i] if i in named else it.pos[i] for i in range(6))
+    mid = tuple(it.refs.intermediate.point[i] if i in named else it.pos[i] for i in range(6))
     it.release_axes(named)  # the intermediate point is an absolute position
     ctx.out.append(Rapid(ctx.span, it.frame, it.pos, mid, block_motion(it, ctx), origin=c.name))  # type: ignore[arg-type]
     it.pos = mid  # type: ignore[assignment]
@@ -682,9 +586,6 @@ def _tool_change(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     ctx.out.append(ToolChange(ctx.span, it.frame, it.modal.tool_selected))
     it.hold_axes(range(3), ctx)  # the changer may move X Y Z: a translation writes each axis's next word
 
-
-from cncc.frontend import cycles as _cycles  # noqa: E402,F401  (canned cycles and hole patterns register here)
-from cncc.frontend import mcodes as _mcodes  # noqa: E402,F401  (machine M codes, smoothing, G54.1/G154 P)
-from cncc.frontend import rs274 as _rs274  # noqa: E402,F401  (LinuxCNC/grbl G61, G92.1, G10 L20 ...)
-from cncc.frontend import saved_points as _saved_points  # noqa: E402,F401  (SZGH G25, G61, G26)
-from cncc.frontend import transforms as _transforms  # noqa: E402,F401  (registers G10, G15/G16, G41/G42, G51 ...)
+# the registry's names are re-exported: the modules that register ops use ops.handler, ops.MOTIONS ...
+__all__ = ["AXES", "BLOCK_HOOKS", "DEFAULT_ORDER", "HANDLERS", "MOTIONS", "BlockHook", "Handler", "HandlerTable",
+           "Layer", "MotionHandler", "block_motion", "feed_mm_min", "handler", "run_block", "target"]

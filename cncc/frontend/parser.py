@@ -42,18 +42,9 @@ class ParseOptions:
 
 
 def abbreviations(dialect: Dialect) -> tuple[tuple[str, str], ...]:
-    """(word, abbreviation) pairs of the dialect's macro words (``[macro_words]``).
-
-    Fanuc accepts the first two letters of a macro word for the word (``WH`` for WHILE,
-    ``GO`` for GOTO, ``AT`` for ATAN ...).  An abbreviation two words share is not used.
-    """
-    raw = dialect.raw.get("macro_words", {})
-    letters = int(raw.get("abbreviation_letters", 0))
-    if letters <= 0:
-        return ()
-    words = [str(w).upper() for w in raw.get("words", []) if len(str(w)) > letters]
-    short = [w[:letters] for w in words]
-    return tuple((w, a) for w, a in zip(words, short, strict=True) if short.count(a) == 1 and a not in words)
+    """(word, abbreviation) pairs of the dialect's macro words (``WH`` for WHILE, ``GO`` for
+    GOTO, ``AT`` for ATAN ...): ``Dialect.lexicon.abbreviations``."""
+    return dialect.lexicon.abbreviations
 
 
 def _with_abbreviations(line: str, pairs: tuple[tuple[str, str], ...]) -> str:
@@ -66,10 +57,13 @@ def _with_abbreviations(line: str, pairs: tuple[tuple[str, str], ...]) -> str:
 
 
 def grammar_text(family: str, comments: tuple[str, ...], block_end: str,
-                 abbreviated: tuple[tuple[str, str], ...] = ()) -> str:
-    """The grammar of ``family`` with the dialect's comment and block-end forms (and the
-    abbreviations of its macro words, :func:`abbreviations`)."""
+                 abbreviated: tuple[tuple[str, str], ...] = (), functions: tuple[str, ...] = ()) -> str:
+    """The grammar of ``family`` with the dialect's comment and block-end forms, its function
+    names in place of ``@functions`` (``Dialect.lexicon``), and the abbreviations of its
+    macro words (:func:`abbreviations`)."""
     text = resources.files("cncc.grammar").joinpath(f"{family}.lark").read_text(encoding="utf-8")
+    names = sorted(functions, key=lambda f: (-len(f), f))
+    text = text.replace("@functions", "|".join(names) if names else "(?!)")
     enabled = set(comments)
     terminals = {"paren": ["PAREN_COMMENT", "UNCLOSED_PAREN"], "slash": ["SLASH_COMMENT"], "semi": ["SEMI_COMMENT"]}
     end_tag = "semi" if block_end == ";" else "none"
@@ -255,10 +249,10 @@ def _per_thread(build: Callable[_P, _T]) -> Callable[_P, _T]:
 
 @_per_thread
 def _lark(family: str, comments: tuple[str, ...], block_end: str,
-          abbreviated: tuple[tuple[str, str], ...] = ()) -> tuple[Lark, _Builder]:
+          abbreviated: tuple[tuple[str, str], ...] = (), functions: tuple[str, ...] = ()) -> tuple[Lark, _Builder]:
     builder = _Builder({short: word for word, short in abbreviated})
     parser = Lark(
-        grammar_text(family, comments, block_end, abbreviated),
+        grammar_text(family, comments, block_end, abbreviated, functions),
         parser="lalr",
         lexer="contextual",
         transformer=builder,
@@ -300,6 +294,7 @@ class Parser:
         self._plain = _plain_line_re(self._comments, self._block_end)
         self._family = dialect.grammar
         self._abbreviated = abbreviations(dialect)
+        self._functions = dialect.lexicon.functions
         # ISO tape format: ':1000' is the program number O1000 (one character for one)
         self._command = str(dialect.raw.get("system_command_prefix", ""))  # grbl '$H': not G-code
         self._o_marks = tuple(str(m) for m in dialect.raw.get("program_number_marks", []) if len(str(m)) == 1)
@@ -393,7 +388,7 @@ class Parser:
 
     # ---- grammar path
     def _lark_blocks(self, src: SourceFile, line: str, base: int, line_no: int) -> Iterator[sx.Block]:
-        parser, builder = _lark(self._family, self._comments, self._block_end, self._abbreviated)
+        parser, builder = _lark(self._family, self._comments, self._block_end, self._abbreviated, self._functions)
         builder.base = base
         bad_numbers: list[tuple[int, int, str]] = []
         builder.bad_numbers = bad_numbers  # read back before the first yield (generators interleave)

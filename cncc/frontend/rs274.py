@@ -19,44 +19,19 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass, field, replace
+from dataclasses import replace
 from typing import TYPE_CHECKING
-from weakref import WeakKeyDictionary
 
 from cncc import diagnostics as dg
 from cncc.dialects import CodeDef
 from cncc.frontend import ops
 from cncc.frontend.ops import AXES, handler, target
+from cncc.frontend.rs274_state import Rs274State as Rs274State  # re-exported
+from cncc.frontend.rs274_state import state as state  # re-exported
 from cncc.ir import ZERO6, FeedRate, PathMode, Rapid, SetMode, Vec6
 
 if TYPE_CHECKING:
     from cncc.frontend.interp import BlockContext, Interpreter
-
-
-@dataclass(slots=True)
-class Rs274State:
-    """RS274 modes the shared :class:`~cncc.frontend.modal.ModalState` does not hold."""
-
-    arc_absolute: bool = False  # G90.1
-    inverse_time: bool = False  # G93
-    g92_saved_mm: Vec6 = ZERO6  # parameters 5211-5216 (G92.2 keeps them, G92.3 restores)
-    g92_applied: bool = False  # parameter 5210: G92/G52 in force (G92.1/G92.2 clear it, G92.3 sets it)
-    stored_mm: dict[int, Vec6] = field(default_factory=dict)  # G28 (1) / G30 (2) in machine coordinates
-    g5_pq_mm: tuple[float, float] = (0.0, 0.0)  # P, Q of the last G5 (its end tangent)
-    nurbs: list[tuple[float, float, float]] = field(default_factory=list)  # G5.2 control points x, y, weight
-    nurbs_order: int = 3
-    naive_mm: float = 0.0  # G64 Q (the naive-CAM tolerance in force)
-    rotation_deg: dict[int, float] = field(default_factory=dict)  # G10 L2 R: work system -> XY rotation
-
-
-_STATES: WeakKeyDictionary[Interpreter, Rs274State] = WeakKeyDictionary()
-
-
-def state(it: Interpreter) -> Rs274State:
-    st = _STATES.get(it)
-    if st is None:
-        st = _STATES[it] = Rs274State()
-    return st
 
 
 def _vec(values: list[float]) -> Vec6:
@@ -119,7 +94,7 @@ def _absolute_centres(it: Interpreter, ctx: BlockContext) -> None:
     for c in ctx.codes:  # G90.1/G91.1 in this block apply before its motion
         if c.op in ("arc_absolute", "arc_incremental"):
             state(it).arc_absolute = c.op == "arc_absolute"
-    st = _STATES.get(it)
+    st = it.rs274
     motion = next((c.op for c in ctx.codes if c.group == "motion"), it.modal.motion)
     if st is None or not st.arc_absolute or motion not in ("arc_cw", "arc_ccw"):
         return
@@ -289,7 +264,7 @@ def _g94(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
 
 def _inverse_time_feed(it: Interpreter, ctx: BlockContext) -> None:
     """In G93 the block's F (1/min) becomes the path feed length x F for this block."""
-    st = _STATES.get(it)
+    st = it.rs274
     motion = next((c.op for c in ctx.codes if c.group == "motion"), it.modal.motion)
     if st is None or not st.inverse_time or motion not in ("linear", "arc_cw", "arc_ccw"):
         return
@@ -337,6 +312,3 @@ def _path_length_mm(it: Interpreter, ctx: BlockContext, end: Vec6, motion: str) 
 
 ops.BLOCK_HOOKS.append(_inverse_time_feed)
 
-
-from cncc.frontend import rs274_curves as _curves  # noqa: E402,F401  (G5, G5.1, G5.2/G5.3)
-from cncc.frontend import rs274_sync as _sync  # noqa: E402,F401  (G33, G33.1)

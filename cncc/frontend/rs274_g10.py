@@ -98,7 +98,7 @@ def _work_entry(it: Interpreter, ctx: BlockContext, table: int, index: int) -> N
     ctx.out.append(SetMode(ctx.span, it.frame, "work_table", (index, old, new)))  # translation writes it (G10)
     rw = ctx.words.get("R")
     if rw is not None and table == 2:
-        from cncc.frontend.rs274 import state
+        from cncc.frontend.rs274_state import state
 
         state(it).rotation_deg[index] = rw.value
     if f.work_index == index:  # LinuxCNC reports the active system's offsets and rotation, changed or not
@@ -122,6 +122,6 @@ def machine_xy(it: Interpreter) -> tuple[float, float]:
 def rotation_deg(it: Interpreter, index: int) -> float:
     """The XY rotation of work system ``index`` (G10 L2 R; the trace reports it, cncc does not
     rotate the moves yet: docs/dialects-notes.md)."""
-    from cncc.frontend.rs274 import state
+    from cncc.frontend.rs274_state import state
 
     return state(it).rotation_deg.get(index, 0.0)

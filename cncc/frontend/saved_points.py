@@ -18,6 +18,7 @@ table (1..4) names the single axis.
 
 from __future__ import annotations
 
+from dataclasses import replace
 from typing import TYPE_CHECKING
 
 from cncc.dialects import CodeDef
@@ -43,14 +44,14 @@ def _to_machine(p: Vec6, f: Frame) -> Vec6:
 
 @handler("save_point")
 def _g25(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
-    it.saved_machine_mm = _to_machine(it.pos, it.frame)
+    it.refs = replace(it.refs, saved_machine_mm=_to_machine(it.pos, it.frame))
 
 
 @handler("return_saved", "return_start")
 def _return(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     ctx.axis_used = True
-    target = it.saved_machine_mm if c.op == "return_saved" else None
-    machine = target if target is not None else it.start_machine_mm  # G61 without G25 acts as G26
+    target = it.refs.saved_machine_mm if c.op == "return_saved" else None
+    machine = target if target is not None else it.refs.start_machine_mm  # G61 without G25 acts as G26
     axes = (c.index - 1,) if c.index else _ALL_AXES
     o = _offset(it.frame)
     end = list(it.pos)

@@ -20,13 +20,14 @@ the positions stay as programmed.  ``docs/frames.md`` explains the choices.
 from __future__ import annotations
 
 import math
-import weakref
-from dataclasses import dataclass, field, replace
+from dataclasses import replace
 from typing import TYPE_CHECKING
 
 from cncc import diagnostics as dg
 from cncc.dialects import CodeDef
 from cncc.frontend.ops import AXES, BLOCK_HOOKS, handler
+from cncc.frontend.polar import polar_target
+from cncc.frontend.run_state import TransformState
 from cncc.ir import CompSide, SetMode, Vec6
 from cncc.ir.frame import Mirror, Polar, Rotation, Scaling
 
@@ -37,27 +38,9 @@ if TYPE_CHECKING:
 _ARC_OPS = ("arc_cw", "arc_ccw")
 
 
-@dataclass(slots=True)
-class _State:
-    """Per-interpreter state these handlers keep beside the modal snapshot."""
-
-    polar_radius_mm: float = 0.0
-    polar_angle_deg: float = 0.0
-    length_wear_mm: dict[int, float] = field(default_factory=dict)
-    radius_wear_mm: dict[int, float] = field(default_factory=dict)
-    length_op: str = "length_off"
-    comp_op: str = "comp_off"
-    d_index: int = 0
-
-
-_STATES: weakref.WeakKeyDictionary[Interpreter, _State] = weakref.WeakKeyDictionary()
-
-
-def _state(it: Interpreter) -> _State:
-    st = _STATES.get(it)
-    if st is None:
-        st = _STATES[it] = _State()
-    return st
+def _state(it: Interpreter) -> TransformState:
+    """The interpreter's transform record (mutable, owned by the interpreter)."""
+    return it.transform
 
 
 def _index(it: Interpreter, w: Word) -> int | None:
@@ -101,40 +84,6 @@ def _polar_off(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     if it.frame.polar is not None:
         it.set_frame(replace(it.frame, polar=None))
         ctx.out.append(SetMode(ctx.span, it.frame, "polar", None))
-
-
-def polar_target(it: Interpreter, ctx: BlockContext) -> Vec6:
-    """End point of a block in polar mode: first plane word = radius, second = angle.
-
-    Angles are counter-clockwise positive from the first plane axis (SYNTEC A-23).
-    Absolute words replace the last radius/angle, incremental words add to them.
-    """
-    pol = it.frame.polar
-    assert pol is not None
-    plane = it.frame.plane
-    i, j = plane.first, plane.second
-    rd = it.reader
-    inc = it.modal.incremental
-    p = list(it.pos)
-    for k, letter in enumerate(AXES):
-        w = ctx.words.get(letter)
-        if w is None or k in (i, j):
-            continue
-        v = rd.axis_value(w)
-        p[k] = p[k] + v if inc else v
-    st = _state(it)
-    rw, aw = ctx.words.get(AXES[i]), ctx.words.get(AXES[j])
-    if rw is not None:
-        v = rd.length_mm(rw)
-        st.polar_radius_mm = st.polar_radius_mm + v if inc else v
-    if aw is not None:
-        v = rd.angle_deg(aw)
-        st.polar_angle_deg = st.polar_angle_deg + v if inc else v
-    if rw is not None or aw is not None:
-        a = math.radians(st.polar_angle_deg)
-        p[i] = pol.origin_mm[0] + st.polar_radius_mm * math.cos(a)
-        p[j] = pol.origin_mm[1] + st.polar_radius_mm * math.sin(a)
-    return (p[0], p[1], p[2], p[3], p[4], p[5])
 
 
 # ---- scaling (G50/G51, SZGH G36/G37) -------------------------------------------------------

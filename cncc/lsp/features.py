@@ -24,6 +24,12 @@ def _h() -> ModuleType:
 
 
 def register(ls: CnccServer) -> None:
+    _register_lifecycle(ls)
+    _register_documents(ls)
+    _register_queries(ls)
+
+
+def _register_lifecycle(ls: CnccServer) -> None:
     @ls.feature(lsp.INITIALIZE)
     def initialize(ls: CnccServer, params: lsp.InitializeParams) -> None:  # light: the handshake
         if isinstance(params.initialization_options, dict):
@@ -42,6 +48,8 @@ def register(ls: CnccServer) -> None:
     def did_change_configuration(ls: CnccServer, params: lsp.DidChangeConfigurationParams) -> Any:
         return _h().did_change_configuration(ls, params)
 
+
+def _register_documents(ls: CnccServer) -> None:
     @ls.feature(lsp.TEXT_DOCUMENT_DID_OPEN)
     def did_open(ls: CnccServer, params: lsp.DidOpenTextDocumentParams) -> Any:
         return _h().did_open(ls, params)
@@ -58,6 +66,8 @@ def register(ls: CnccServer) -> None:
     def did_close(ls: CnccServer, params: lsp.DidCloseTextDocumentParams) -> Any:
         return _h().did_close(ls, params)
 
+
+def _register_queries(ls: CnccServer) -> None:
     @ls.feature(lsp.TEXT_DOCUMENT_HOVER)
     def hover(ls: CnccServer, params: lsp.HoverParams) -> Any:
         return _h().hover(ls, params)

@@ -43,7 +43,6 @@ if TYPE_CHECKING:
 
 EVERY = 128  # lines between two checkpoints of a full run
 MAX_REGION_LINES = 20_000  # a resume that re-runs more than this gives up (the full run is as fast)
-_FIXED = frozenset({"dialect", "sink", "source_id", "options", "handlers", "_motion_cache"})
 
 
 @dataclass(frozen=True, slots=True)
@@ -54,17 +53,12 @@ class Checkpoint:
 
 
 def state_of(it: Interpreter) -> dict[str, Any]:
-    """The interpreter's state: every attribute but its fixed parts, containers copied."""
-    out = {}
-    for k, v in it.__dict__.items():
-        if k not in _FIXED:
-            out[k] = v.copy() if isinstance(v, dict | list | set) else v
-    return out
+    """The interpreter's run state (every field but its fixed parts), copied."""
+    return it.run_state()
 
 
 def restore(it: Interpreter, state: dict[str, Any]) -> None:
-    for k, v in state.items():
-        setattr(it, k, v.copy() if isinstance(v, dict | list | set) else v)
+    it.restore_run_state(state)
 
 
 class Shifts:
@@ -127,8 +121,9 @@ def eligible(text: str, dialect: Dialect) -> bool:
     resumes follow the very path the compiler takes)."""
     from cncc.frontend.fastpath import is_straight_line
     from cncc.frontend.macro.remap import remaps_cycles
+    from cncc.frontend.plugins import front_end
 
-    if dialect.raw.get("checker") or dialect.macro_flavour == "linuxcnc":
+    if not front_end(dialect).fast_path:
         return False
     return is_straight_line(text, dialect) and not remaps_cycles(dialect)
 
@@ -279,25 +274,7 @@ def _resume(old: Analysis, a: Analysis, check: Callable[[], None]) -> None:
             yield c
 
     stream = light_passes(plain(cmds), old.dialect, old.machine, opts, sink, relink_mem)
-    region: list[Command] = []
-    met: _Met | None = None
-    from cncc.backends.nominal import command_time_s
-
-    times: dict[int, float] = {}
-    line_of = a.index.line_of
-    n = 0
-    try:
-        for c in stream:
-            n += 1
-            if n % 256 == 0:
-                check()
-            region.append(c)
-            t, cat = command_time_s(c, old.machine)
-            if cat and t > 0.0:
-                ln = line_of(c.span.start)
-                times[ln] = times.get(ln, 0.0) + t
-    except _Met as m:
-        met = m
+    region, times, met = _run_region(stream, check, old.machine, a.index.line_of)
     # ---- splice
     lo = start.offset  # the same in both texts (before the change)
     hi_new = met.offset if met is not None else len(text)
@@ -307,26 +284,8 @@ def _resume(old: Analysis, a: Analysis, check: Callable[[], None]) -> None:
     a.commands = old.commands[:i] + region + old.commands[j:]
     a.shifts = old.shifts.spliced(i, j, len(region), d_chars)
     met_line_old = met.line - d_lines if met is not None else old.index.line_count
-    if met is not None and d_lines == 0:  # the lines did not move: copy, then redo the region
-        kept_times = dict(old.line_time_s)
-        for ln in range(start_line, met.line):
-            kept_times.pop(ln, None)
-    else:
-        kept_times = {ln: t for ln, t in old.line_time_s.items() if ln < start_line}
-        if met is not None:
-            kept_times.update((ln + d_lines, t) for ln, t in old.line_time_s.items() if ln >= met_line_old)
-    kept_times.update(times)
-    a.line_time_s = kept_times
-    diags: list[Diagnostic] = []
-    for d in old.diagnostics:
-        s = d.span
-        if s.source_id != 0 or s.start < lo:
-            diags.append(d)
-        elif met is not None and s.start >= hi_old:
-            diags.append(_shift_diag(d, d_chars))
-    diags += list(sink)
-    diags.sort(key=lambda d: (d.span.source_id != 0, d.span.start))
-    a.diagnostics = diags
+    a.line_time_s = _spliced_times(old.line_time_s, times, start_line, met, d_lines)
+    a.diagnostics = _spliced_diagnostics(old.diagnostics, list(sink), lo, hi_old, met, d_chars)
     if met is not None:
         for ln, cp in memory.checkpoints.items():
             if ln >= met_line_old:
@@ -341,6 +300,61 @@ def _resume(old: Analysis, a: Analysis, check: Callable[[], None]) -> None:
         a.reached = old.reached + d_chars
     a.resumed = (start_line, met.line if met is not None else a.index.line_count)
     a.region = (lo, hi_new, hi_old)
+
+
+def _run_region(stream: Iterator[Command], check: Callable[[], None], machine: Any, line_of: Callable[[int], int]
+                ) -> tuple[list[Command], dict[int, float], _Met | None]:
+    """Run the re-lowered region until its state meets the old run's: its commands, the
+    nominal time per line, and where it met (None: it ran to the end)."""
+    from cncc.backends.nominal import command_time_s
+
+    region: list[Command] = []
+    times: dict[int, float] = {}
+    n = 0
+    try:
+        for c in stream:
+            n += 1
+            if n % 256 == 0:
+                check()
+            region.append(c)
+            t, cat = command_time_s(c, machine)
+            if cat and t > 0.0:
+                ln = line_of(c.span.start)
+                times[ln] = times.get(ln, 0.0) + t
+    except _Met as m:
+        return region, times, m
+    return region, times, None
+
+
+def _spliced_times(old_times: dict[int, float], times: dict[int, float], start_line: int, met: _Met | None,
+                   d_lines: int) -> dict[int, float]:
+    """The line times: the old ones outside the region (moved by ``d_lines`` after it), the new inside."""
+    if met is not None and d_lines == 0:  # the lines did not move: copy, then redo the region
+        kept_times = dict(old_times)
+        for ln in range(start_line, met.line):
+            kept_times.pop(ln, None)
+    else:
+        kept_times = {ln: t for ln, t in old_times.items() if ln < start_line}
+        if met is not None:
+            met_line_old = met.line - d_lines
+            kept_times.update((ln + d_lines, t) for ln, t in old_times.items() if ln >= met_line_old)
+    kept_times.update(times)
+    return kept_times
+
+
+def _spliced_diagnostics(old: list[Diagnostic], new: list[Diagnostic], lo: int, hi_old: int, met: _Met | None,
+                         d_chars: int) -> list[Diagnostic]:
+    """The old diagnostics before the region and (shifted) after it, and the region's new ones."""
+    diags: list[Diagnostic] = []
+    for d in old:
+        s = d.span
+        if s.source_id != 0 or s.start < lo:
+            diags.append(d)
+        elif met is not None and s.start >= hi_old:
+            diags.append(_shift_diag(d, d_chars))
+    diags += new
+    diags.sort(key=lambda d: (d.span.source_id != 0, d.span.start))
+    return diags
 
 
 def _shift_diag(d: Diagnostic, delta: int) -> Diagnostic:

@@ -143,7 +143,9 @@ def region_first(a: Analysis, old: Analysis, check: Callable[[], None]) -> Machi
     the frame passes).  None when there is nothing to start from (the full phase follows
     anyway and replaces this)."""
     from cncc import driver
-    from cncc.passes import PassContext, run_pipeline
+    from cncc.passes import PassContext
+    from cncc.pipeline import PipelineConfig, builder
+    from cncc.pipeline.manager import PassManager
 
     prev = old.machine_check
     if (a.region is None or prev is None or prev.stopped or a.machine is None or a.dialect is None
@@ -163,7 +165,8 @@ def region_first(a: Analysis, old: Analysis, check: Callable[[], None]) -> Machi
     cmds = [c for c in a.commands_between(lo, hi_new) if lo <= c.span.start < hi_new]
     if cmds:
         ctx = PassContext(sink=DiagnosticSink(), dialect=a.dialect, machine=a.machine)
-        moved = list(run_pipeline(driver.frame_passes(a.dialect, machine_coords=True), iter(cmds), ctx))
+        passes = builder.frame_passes(PipelineConfig(machine_coords=True), a.dialect)
+        moved = list(PassManager().run(passes, cmds, ctx))
         check()
         traj, _ = driver.plan_trajectory(moved, a.machine, 0, DiagnosticSink())
         kept += limit_diagnostics(traj, moved, a.machine)

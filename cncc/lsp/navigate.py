@@ -20,12 +20,12 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 
 from cncc.dialects import Dialect
+from cncc.dialects.lexicon import parse_lexicon
 from cncc.lsp.positions import LineIndex
 from cncc.lsp.scan import Comments, Token, tokens
 
 CALL_OPS = {"subprogram_call", "macro_call", "modal_call", "subprogram_return"}
-O_KEYWORDS = frozenset({"SUB", "ENDSUB", "CALL", "RETURN", "IF", "ELSEIF", "ELSE", "ENDIF", "WHILE", "ENDWHILE",
-                        "DO", "REPEAT", "ENDREPEAT", "BREAK", "CONTINUE"})
+O_KEYWORDS = frozenset(parse_lexicon("rs274ngc", {}).statements)  # the words after a LinuxCNC O-word
 
 
 @dataclass(frozen=True, slots=True)

@@ -8,10 +8,13 @@ followed by ``driver.path_passes``, with two differences for the editor:
   mirror, rotation, cutter compensation -- are started only at the first command
   whose frame asks for one of them.  Before it, all they do to a command is to
   start each motion where the previous one ended (a cycle's expanded moves, a
-  change of work offset); :func:`_relink` does just that.  The commands and the
+  change of work offset); the ``relink`` pass does just that.  The commands and the
   diagnostics are the same (``tests/lsp/test_pipeline.py`` compares both pipelines
   on a corpus); on a plain CAM program this saves about half of the first phase,
   which is what the editor waits for.
+
+Both lists of passes come from the pipeline builder (:mod:`cncc.pipeline.builder`), with
+the driver's configuration for the same options (:func:`cncc.driver.pipeline_config`).
 """
 
 from __future__ import annotations
@@ -51,15 +54,11 @@ def compile_options(req: Request, dialect: Dialect) -> Options:
 
 
 def interp_options(opts: Options, machine: MachineModel, sink: DiagnosticSink) -> InterpOptions:
-    """The interpreter's tables (work offsets, tool lengths and radii, reference points)."""
+    """The interpreter's tables (work offsets, tool lengths and radii, reference points), as the driver makes them."""
     from cncc import driver
-    from cncc.frontend import InterpOptions
 
-    work, lengths, radii = driver.load_tables(opts, sink)
-    refs = tuple(tuple(r) + (0.0,) * (6 - len(r)) for r in machine.reference_positions_mm) or ((0.0,) * 6,)
-    return InterpOptions(work_offsets_mm=work, tool_lengths_mm=lengths, tool_radii_mm=radii,
-                         reference_mm=refs, block_delete=opts.block_delete,  # type: ignore[arg-type]
-                         strict=opts.strict)
+    iopts: InterpOptions = driver.interp_options(opts, machine, sink)
+    return iopts
 
 
 def compile_commands(req: Request, dialect: Dialect, machine: MachineModel, sources: SourceMap,
@@ -134,45 +133,15 @@ def _chain(head: list[Command], rest: Iterator[Command]) -> Iterator[Command]:
 
 def light_passes(cmds: Iterable[Command], dialect: Dialect, machine: MachineModel, opts: Options,
                  sink: DiagnosticSink, memory: Memory | None = None) -> Iterator[Command]:
-    """``driver.path_passes`` without the frame passes (same cycle expansion and arc check);
-    ``memory``: see :func:`_relink`."""
-    from cncc.passes import PassContext, run_pipeline
-    from cncc.passes.arc_check import ArcCheck
-    from cncc.passes.expand_cycles import ExpandCycles
+    """``driver.path_passes`` with ``relink`` in place of the frame passes (same cycle expansion
+    and arc check; :func:`cncc.pipeline.builder.light_passes`); ``memory``: where the relink
+    starts and what it keeps up to date."""
+    from cncc import driver
+    from cncc.dialects.errors import controller_sink
+    from cncc.passes import PassContext
+    from cncc.pipeline import builder
+    from cncc.pipeline.manager import PassManager
 
-    ctx = PassContext(sink=sink, dialect=dialect, machine=machine)
-    tol_abs = float(dialect.option("arc_radius_tolerance_mm", ArcCheck.abs_tol_mm))
-    tol_rel = float(dialect.option("arc_radius_tolerance_rel", ArcCheck.rel_tol))
-    arc_check = ArcCheck(abs_tol_mm=max(tol_abs, ArcCheck.abs_tol_mm), rel_tol=tol_rel, repair=opts.repair_arcs)
-    expanded = run_pipeline([ExpandCycles()], cmds, ctx)
-    return arc_check.run(_relink(expanded, memory), ctx)
-
-
-def _relink(cmds: Iterable[Command], memory: Memory | None = None) -> Iterator[Command]:
-    """Each motion starts where the previous one ended (what the frame passes do to commands
-    whose frames transform nothing); positions compared in program + offset coordinates.
-    With ``memory``, it starts from ``memory.last`` and keeps it up to date."""
-    from cncc.ir import Arc, Linear, Rapid
-
-    last: tuple[float, ...] | None = memory.last if memory is not None else None
-    for c in cmds:
-        if not isinstance(c, Rapid | Linear | Arc):
-            yield c
-            continue
-        f = c.frame
-        if last is not None:
-            o = f.total_offset_mm
-            start = (last[0] - o[0], last[1] - o[1], last[2] - o[2], last[3] - o[3], last[4] - o[4], last[5] - o[5])
-            if start != c.start:
-                if isinstance(c, Rapid):
-                    c = Rapid(c.span, f, start, c.end, c.motion, c.origin)
-                elif isinstance(c, Linear):
-                    c = Linear(c.span, f, start, c.end, c.feed_mm_min, c.motion, c.origin)
-                else:
-                    c = Arc(c.span, f, start, c.end, c.center, c.turns, c.plane, c.feed_mm_min, c.motion, c.origin)
-        o = f.total_offset_mm
-        e = c.end
-        last = (e[0] + o[0], e[1] + o[1], e[2] + o[2], e[3] + o[3], e[4] + o[4], e[5] + o[5])
-        if memory is not None:
-            memory.last = last
-        yield c
+    ctx = PassContext(sink=controller_sink(sink, dialect.raw.get("errors")), dialect=dialect, machine=machine)
+    passes = builder.light_passes(driver.pipeline_config(opts), dialect, memory)
+    return PassManager().run(passes, cmds, ctx)

@@ -65,6 +65,7 @@ class Blend(Pass):
     """Resolve blend tolerances and exact stops (G64 P, G05.1 E, G09/G61/G60, M/S/T)."""
 
     name: ClassVar[str] = "blend"
+    stage: ClassVar[str] = "plan"
     tolerance_mm: float | None = None  # override the machine default for unprogrammed G64
     exact_stop: bool = False  # stop at the end of every motion (global G61)
 

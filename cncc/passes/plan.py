@@ -37,7 +37,8 @@ the rule they follow.
 from __future__ import annotations
 
 from collections.abc import Callable, Iterable, Iterator, Sequence
-from dataclasses import dataclass
+from contextlib import AbstractContextManager
+from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, ClassVar
 
 from cncc.diagnostics import DiagnosticSink
@@ -218,22 +219,43 @@ def _profile(seg: Segments, machine: MachineModel, limits: AxisLimits, level: in
     return scurve_profile(seg, raw_acap, limits.jmax_mm_s3, machine.interpolation_period_s)
 
 
+Estimate = Callable[[Sequence[Command], MachineModel], "Trajectory"]
+ProgressBar = Callable[[str, int], AbstractContextManager[Callable[[int], None]]]
+
+
 @register
 @dataclass(frozen=True, kw_only=True)
 class Plan(Pass):
-    """Time-parameterise the motion; the Trajectory goes to ``ctx.options['trajectory']``.
+    """Time-parameterise the motion at ``level`` on ``ctx.machine``; the Trajectory goes to
+    ``ctx.trajectory`` (how it was made to ``ctx.plan_how``).
 
-    Commands pass through unchanged (so later passes and backends still see them).
+    Commands pass through unchanged, in order, so ``Trajectory.cmd_index`` indexes them and
+    ``verify`` and the backends still see them.  ``estimate`` replaces the planner (the
+    pipeline builder gives -O0 the nominal estimate of :mod:`cncc.backends.nominal`, which
+    passes may not import); ``progress`` draws a bar over the planned commands.
     """
 
     name: ClassVar[str] = "plan"
+    stage: ClassVar[str] = "plan"
     level: int = 2  # the -O level
+    estimate: Estimate | None = field(default=None, compare=False, repr=False)
+    progress: ProgressBar | None = field(default=None, compare=False, repr=False)
 
     def run(self, cmds: Iterable[Command], ctx: PassContext) -> Iterator[Command]:
-        from cncc.machines import load_machine
-
         items = list(cmds)
-        machine = ctx.machine if ctx.machine is not None else load_machine("generic-mill")
-        ctx.options["trajectory"] = plan_commands(items, machine, self.level, ctx.sink)
-        ctx.options["plan_level"] = self.level
+        machine = ctx.machine
+        if machine is None:
+            from cncc.machines import load_machine
+
+            machine = load_machine("generic-mill")
+        ctx.plan_level = self.level
+        if self.estimate is not None:
+            ctx.trajectory, ctx.plan_how = self.estimate(items, machine), "nominal: length / feed"
+            return iter(items)
+        if self.progress is None:
+            ctx.trajectory = plan_commands(items, machine, self.level, ctx.sink)
+        else:
+            with self.progress(f"planning -O{self.level} on {machine.name}", len(items)) as update:
+                ctx.trajectory = plan_commands(items, machine, self.level, ctx.sink, progress=update)
+        ctx.plan_how = f"planned -O{self.level}"
         return iter(items)

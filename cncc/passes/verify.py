@@ -30,7 +30,7 @@ commands and the machine model, and checks each constant-jerk phase analytically
   backend, which draws arcs as 10-degree chords for its plots.
 * E0615 soft limits (``check_soft_limits``: the driver checks them only when the work
   offsets are known, i.e. with ``--offsets``).
-Returns a :class:`VerifyReport`; the pass wrapper reads ``ctx.options['trajectory']``.
+Returns a :class:`VerifyReport`; the ``verify`` pass reads ``ctx.trajectory`` (left by ``plan``).
 """
 
 from __future__ import annotations
@@ -303,20 +303,25 @@ def _deviation(traj: Trajectory, p_end: FloatArray, cmds: Sequence[Command], tab
 @register
 @dataclass(frozen=True, kw_only=True)
 class Verify(Pass):
-    """Check ``ctx.options['trajectory']`` (left there by ``plan``) against the machine."""
+    """Check ``ctx.trajectory`` (left there by ``plan``) against ``ctx.machine`` under the corner
+    rule of ``ctx.plan_level``; the report goes to ``ctx.verify_report``.  Commands pass
+    through unchanged."""
 
     name: ClassVar[str] = "verify"
-    check_dynamics: bool = True
+    stage: ClassVar[str] = "plan"
+    check_dynamics: bool = True  # accelerations, jerks and corners (-O1 and above)
+    jerk_limited: bool = True  # acceleration steps too (-O2 and above)
+    soft_limits: bool = False  # the machine's soft limits (only meaningful with the work offsets known)
 
     def run(self, cmds: Iterable[Command], ctx: PassContext) -> Iterator[Command]:
         items = list(cmds)
-        traj = ctx.options.get("trajectory")
+        traj = ctx.trajectory
         if isinstance(traj, Trajectory) and ctx.machine is not None:
             from cncc.machines import effective_corner_rule
 
-            level = int(ctx.options.get("plan_level", 2))
-            report = verify_trajectory(traj, items, ctx.machine, ctx.sink,
-                                       corner_rule=effective_corner_rule(ctx.machine, level),
-                                       check_dynamics=self.check_dynamics and level > 0, jerk_limited=level >= 2)
-            ctx.options["verify_report"] = report
+            ctx.verify_report = verify_trajectory(traj, items, ctx.machine, ctx.sink,
+                                                  corner_rule=effective_corner_rule(ctx.machine, ctx.plan_level),
+                                                  check_dynamics=self.check_dynamics,
+                                                  jerk_limited=self.jerk_limited,
+                                                  check_soft_limits=self.soft_limits)
         return iter(items)

@@ -15,7 +15,7 @@ from pathlib import Path
 from cncc.api import compile_commands
 from cncc.diagnostics import DiagnosticSink
 from cncc.dialects import load_dialect
-from cncc.frontend import ops
+from cncc.frontend.handler_tables import core_table
 from cncc.frontend.interp import Interpreter
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -81,7 +81,7 @@ def test_tables_other_dialects_use_hold_no_series8_function() -> None:
     compile_commands(SERIES8, dialect="series8")
     it = Interpreter(load_dialect("syntec"), DiagnosticSink())
     table = it.table
-    assert table is ops.core_table()
+    assert table is core_table()
     fns = [*table.handlers.values(), *table.motions.values(), *table.block_hooks]
     assert not [f for f in fns if getattr(f, "__module__", "").startswith("cncc.frontend.series8")]
     assert "absolute_once" not in table.order  # a SERIES 8 op

@@ -132,4 +132,52 @@ CASES: dict[str, str | tuple[str, str] | tuple[str, str, dict[str, str]]] = {
     "g95_without_spindle_speed": "G21 F300\nG95\nG1 X1 F2\nM2\n",
     "g95_without_feed": "G21 F300\nG95\nG1 X1\nM2\n",
     "g95_s0_in_block": "G21 F300\nS100 M3\nG95 F1\nG1 X1\nG1 X2 S0\nM2\n",
+    # lathe codes (G7/G8, G70-G72, G76): see LATHE below
 }
+
+# G70-G72 profiles (subroutine o100) and the programs around them
+_TURN = "o100 sub\nG1 X2 Z0\nX4 Z-5\nG2 X6 Z-8 R4\nG1 X8 Z-12\no100 endsub\n"
+_POCKET = "o100 sub\nG1 X2 Z0\nX6 Z-4\nX3 Z-7\nX8 Z-10\no100 endsub\n"
+_MM, _SPIN = "G21 G18 F100\n", "G21 G18 S200 M3\n"
+LATHE: dict[str, str] = {
+    "g7_same_block": "G21 G18\nG7 G0 X10 Z1\nG8 X10\nG7\nG91 G0 X4\nG90 G8 G0 X3\nM2\n",
+    "g7_arc_centre_is_radius": _MM + "G7 G0 X10 Z0\nG2 X10 Z-4 I0 K-2\nM2\n",
+    "g7_read_back": ("G21 G18\nG7 G0 X10 Z1\nG0 Z[#<_x>]\n"
+                     "G0 Z[#<_lathe_diameter_mode> + 2 * #<_lathe_radius_mode>]\nM2\n"),
+    "g71_profile": _MM + _TURN + "G0 X12 Z3\nG71 Q100 D0.5 I1 R0.3\nG0 X20\nM2\n",
+    "g71_1_no_pockets": _MM + _POCKET + "G0 X10 Z2\nG71.1 Q100 D0.2 I1\nM2\n",
+    "g71_2_pockets_only": _MM + _POCKET + "G0 X10 Z2\nG71.2 Q100 D0.2 I1\nM2\n",
+    "g71_with_pockets": _MM + _POCKET + "G0 X10 Z2\nG71 Q100 D0.2 I1\nM2\n",
+    "g72_facing": _MM + "o100 sub\nG1 X0 Z-6\nX4 Z-5\nX8 Z-2\nX12 Z-1\no100 endsub\nG0 X14 Z2\nG72 Q100 D0.3 I.8\nM2\n",
+    "g70_passes": _MM + _TURN + "G0 X12 Z3\nG70 Q100 D1 E0.2 P3\nM2\n",
+    "g70_start_words": _MM + _TURN + "G0 X14 Z5\nG70 Q100 X12 Z3\nM2\n",
+    "g71_fillet_chamfer": _MM + ("o100 sub\nG1 X2 Z0\nX4 Z-5 A1\nX8 Z-6 C0.5\nX9 Z-12\no100 endsub\n"
+                                 "G0 X11 Z2\nG71 Q100 D0.2 I1\nM2\n"),
+    "g71_incremental_profile": _MM + ("o100 sub\nG1 X-8 Z-2\nX2 Z-5\nX3 Z-4\no100 endsub\n"
+                                      "G0 X10 Z2\nG91 G71 Q100 D0.2 I1\nG90\nM2\n"),
+    "g71_u_w_in_profile": _MM + "o100 sub\nG1 X2 Z0\nU2 W-5\nU3 W-4\no100 endsub\nG0 X10 Z2\nG71 Q100 D0.2 I1\nM2\n",
+    "g71_arc_ijk": _MM + "o100 sub\nG1 X2 Z0\nG3 X6 Z-4 I0 K-4\nG1 X8 Z-8\no100 endsub\nG0 X10 Z2\nG71 Q100 I1\nM2\n",
+    "g71_diameter_mode": _MM + "G7\n" + _TURN.replace("X", "X1") + "G0 X24 Z3\nG71 Q100 D0.5 I1\nM2\n",
+    "g71_inch": ("G20 G18 F4\no100 sub\nG1 X0.1 Z0\nX0.2 Z-0.3\nX0.35 Z-0.5\no100 endsub\n"
+                 "G0 X0.5 Z0.1\nG71 Q100 D0.01 I0.04 R0.01\nM2\n"),
+    "g71_no_q": _MM + "G0 X10 Z5\nG71 D0.5\nM2\n",
+    "g71_no_sub": _MM + "G0 X10 Z5\nG71 Q999 D0.5\nM2\n",
+    "g71_not_monotonic": _MM + "o100 sub\nG1 X2 Z0\nX4 Z-5\nX6 Z-2\no100 endsub\nG0 X10 Z2\nG71 Q100 D0.2\nM2\n",
+    "g71_i_zero": _MM + _TURN + "G0 X12 Z3\nG71 Q100 D0.5 I0\nM2\n",
+    "g71_not_g18": "G21 G17 F100\n" + _TURN + "G0 X12 Z3\nG71 Q100 D0.5\nM2\n",
+    "g71_no_feed": "G21 G18\n" + _TURN + "G0 X12 Z3\nG71 Q100 D0.5\nM2\n",
+    "g71_u_word": _MM + _TURN + "G0 X12 Z3\nG71 Q100 U0.5\nM2\n",
+    "g71_word_twice": _MM + _TURN + "G0 X12 Z3\nG71 Q100 I1 I2\nM2\n",
+    "g76_external": _SPIN + "G0 X10 Z2\nG76 P1.5 Z-20 I-1 J0.1 K0.9 Q29.5 R1.5 H2\nG0 X15\nM2\n",
+    "g76_internal_tapers": _SPIN + "G0 X5 Z2\nG76 P1 Z-12 I0.5 J0.05 K0.6 E1 L3\nG0 Z5\nM2\n",
+    "g76_towards_plus_z": "G21 G18 S200 M4\nG0 X10 Z-20\nG76 P1.25 Z0 I-0.8 J0.1 K0.7 Q30 E0.8 L1\nM2\n",
+    "g76_diameter_mode": _SPIN + "G7\nG0 X20 Z2\nG76 P1.5 Z-10 I-2 J0.2 K1.8\nM2\n",
+    "g76_g7_same_block": _SPIN + "G0 X10 Z2\nG7 G76 P1.5 Z-10 I-2 J0.2 K1.8\nM2\n",
+    "g76_inch": "G20 G18 S200 M3\nG0 X0.5 Z0.1\nG76 P0.05 Z-1 I-0.075 J0.008 K0.045 Q29.5 L2 E0.045\nM2\n",
+    "g76_modal_needs_words": _SPIN + "G0 X10 Z2\nG76 P1 Z-5 I-1 J0.1 K0.5\nZ-8\nM2\n",
+    "g76_no_spindle": "G21 G18\nG0 X10 Z2\nG76 P1 Z-5 I-1 J0.1 K0.5\nM2\n",
+    "g76_k_not_above_j": _SPIN + "G0 X10 Z2\nG76 P1 Z-5 I-1 J0.5 K0.5\nM2\n",
+    "g76_i_zero": _SPIN + "G0 X10 Z2\nG76 P1 Z-5 I0 J0.1 K0.5\nM2\n",
+    "g76_no_p": _SPIN + "G0 X10 Z2\nG76 Z-5 I-1 J0.1 K0.5\nM2\n",
+}
+CASES.update(LATHE)

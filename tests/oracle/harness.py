@@ -15,13 +15,18 @@ from __future__ import annotations
 
 import os
 import re
+import resource
 import shutil
+import signal
 import subprocess
 import tempfile
 from dataclasses import dataclass, field
 from pathlib import Path
 
 TOLERANCE = 1e-4
+CPU_LIMIT_S = 4  # rs274 runs a generated program in well under a CPU second; more is its endless G71 loop
+WALL_TIMEOUT_S = 120.0  # and a wall-clock bound for a loaded machine
+TIMED_OUT = "rs274 did not finish (timed out)"
 WRAPPER_DEFAULT = Path(os.environ.get("XDG_CACHE_HOME", Path.home() / ".cache")) / "cncc" / "rs274" / "bin" / "rs274"
 
 COMPARED = frozenset({
@@ -50,6 +55,10 @@ MESSAGES: dict[str, str] = {
 }
 
 _CALL = re.compile(r"^\s*(?:\d+\s+)?N\S*\s+([A-Z_0-9]+)\((.*)\)\s*$")
+
+
+def _limit_cpu() -> None:
+    resource.setrlimit(resource.RLIMIT_CPU, (CPU_LIMIT_S, CPU_LIMIT_S + 1))
 
 
 def rs274_path() -> Path | None:
@@ -104,8 +113,14 @@ def run_rs274(text: str, tool_table: str = "", *, exe: Path | None = None, files
         tbl = Path(tmp) / "tool.tbl"
         tbl.write_text(tool_table)
         for _ in range(8):  # rs274 now and then exits non-zero without a message: run it again
-            p = subprocess.run([str(exe), "-t", str(tbl), "-g", str(prog)], capture_output=True, text=True,
-                               timeout=30, cwd=tmp)
+            try:
+                p = subprocess.run([str(exe), "-t", str(tbl), "-g", str(prog)], capture_output=True, text=True,
+                                   timeout=WALL_TIMEOUT_S, cwd=tmp, preexec_fn=_limit_cpu)
+            except subprocess.TimeoutExpired as exc:  # no verdict from rs274
+                out = exc.stdout.decode(errors="replace") if isinstance(exc.stdout, bytes) else (exc.stdout or "")
+                return Run(False, parse_trace(out), TIMED_OUT)
+            if p.returncode in (-signal.SIGXCPU, -signal.SIGKILL):  # an endless loop of rs274 (its G71 bug)
+                return Run(False, parse_trace(p.stdout), TIMED_OUT)
             err_lines = [ln for ln in p.stderr.splitlines() if ln.strip() and ln.strip() != "executing"]
             if p.returncode == 0 or (err_lines and not _table_race(err_lines[0], tool_table)):
                 break
@@ -189,6 +204,10 @@ def diff_calls(want: list[Call], got: list[Call], *, prefix: bool = False) -> st
 def compare(text: str, tool_table: str = "", files: dict[str, str] | None = None) -> Verdict:
     want = run_rs274(text, tool_table, files=files)
     got = run_cncc(text, tool_table, files)
+    if want.error == TIMED_OUT:  # no verdict from rs274: never an agreement (allow.toml may accept it)
+        d = diff_calls(want.calls[:len(got.calls)], got.calls, prefix=True)  # rs274 may repeat moves for ever
+        what = "ok" if got.ok else " ".join(got.codes)
+        return Verdict(False, f"{TIMED_OUT}; cncc {what}" + (f"; before it {d}" if d else ""), want, got)
     if want.ok != got.ok:
         why = f"rs274 error {want.error!r}" if not want.ok else f"cncc error {got.error!r}"
         return Verdict(False, f"only one fails: {why}", want, got)

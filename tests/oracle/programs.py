@@ -510,12 +510,149 @@ def file_subs(rng: random.Random) -> Program:
     return Program(_end(out, rng), "", tuple(files))
 
 
+# ---- lathe codes (G7/G8, G70-G72, G76) ----------------------------------------------------------
+def lathe_modes(rng: random.Random) -> Program:
+    """G7/G8 with X words in moves, arcs (I/K stay radii), G91, G92/G10 and read-back of #<_x>."""
+    u, k = _units(rng)
+    out = [f"{u} G18 G90 F{num(200 * k)}", f"G0 X{num(rng.uniform(0, 20) * k)} Z{num(rng.uniform(0, 5) * k)}"]
+    diameter = False
+    for _ in range(rng.randint(3, 8)):
+        c = rng.random()
+        mode = rng.choice(["G7 ", "G8 ", "", "", ""])
+        if mode:
+            diameter = mode == "G7 "
+        scale = 2 if diameter else 1
+        if c < 0.4:
+            g = rng.choice(["G0", "G1"])
+            out.append(f"{mode}{g} X{num(rng.uniform(-30, 30) * k)} Z{num(rng.uniform(-20, 5) * k)}")
+        elif c < 0.55:
+            out.append(f"{mode}G91 G1 X{num(rng.uniform(-5, 5) * k)}")
+            out.append("G90")
+        elif c < 0.7:  # a half circle in XZ: I/K are radii in both modes (now and then X is not doubled)
+            r, xr, zr = rng.uniform(1, 5) * k, rng.uniform(2, 10) * k, rng.uniform(-5, 5) * k
+            xw = xr * (scale if rng.random() < 0.9 else 1)
+            out.append(f"{mode}G1 X{num(xw)} Z{num(zr)}")
+            out.append(f"{rng.choice(['G2', 'G3'])} X{num(xw)} Z{num(zr - 2 * r)} I0 K{num(-r)}")
+        elif c < 0.8:
+            out.append(f"{mode}{rng.choice(['G92', 'G10 L2 P1', 'G10 L20 P1'])} X{num(rng.uniform(-10, 10) * k)}")
+            if rng.random() < 0.5:
+                out.append(rng.choice(["G92.1", "G10 L2 P1 X0 Z0"]))
+        elif c < 0.9:
+            out.append(f"{mode}G0 Z[#<_x>]")
+        else:
+            out.append(mode.strip() or "G7")
+            diameter = diameter or not mode
+    return Program(_end(out, rng))
+
+
+def _profile(rng: random.Random, k: float, along_z: bool) -> tuple[list[str], tuple[float, float]]:
+    """Profile moves for a G7x subroutine, monotonic along Z (G71) or X (G72) as a rule, and the start
+    point outside it.  Now and then a move turns back (a 'Not monotonic' profile both must refuse)."""
+    n = rng.randint(2, 6)
+    lead, side = 0.0, rng.uniform(2, 6)
+    pts = []
+    for _ in range(n):
+        lead -= rng.uniform(1, 6)
+        if rng.random() < 0.04:
+            lead += rng.uniform(2, 8)  # turns back
+        side = max(0.5, side + rng.uniform(-2, 4))
+        pts.append((lead, side))
+    lines = []
+    g = ""
+    for i, (a, b) in enumerate(pts):
+        z, x = (a, b) if along_z else (b, a)
+        arc_before = g in ("G2", "G3")
+        g = rng.choice(["G1", "G1", "G1", "", "G2", "G3"]) if i else rng.choice(["G1", "G0"])
+        if g == "" and arc_before:
+            g = "G1"  # an arc without R would be an error: the modal arc needs its centre again
+        words = [g] if g else []
+        words += [f"X{num(x * k)}", f"Z{num(z * k)}"]
+        if g in ("G2", "G3"):
+            pz, px = (pts[i - 1] if along_z else pts[i - 1][::-1])
+            chord = math.hypot(z - pz, x - px)
+            words.append(f"R{num(chord / 2 * rng.uniform(1.2, 4) * k)}")
+        if i and rng.random() < 0.15:
+            words.append(f"{rng.choice('AC')}{num(rng.uniform(0.1, 0.6) * k)}")
+        lines.append(" ".join(words))
+    first_z, first_x = (pts[0] if along_z else pts[0][::-1])
+    if along_z:
+        start = (max(p[1] for p in pts) + rng.uniform(1, 4), first_z + rng.uniform(1, 3))
+    else:
+        start = (first_x + rng.uniform(1, 3), min(p[1] for p in pts) - rng.uniform(1, 4))
+    return lines, start
+
+
+def lathe_roughing(rng: random.Random) -> Program:
+    """G70, G71/G71.1/G71.2, G72/G72.1/G72.2 on generated profiles (D, I, R, P, E, X/Z start words)."""
+    u, k = _units(rng)
+    cycle = rng.choice(["G71", "G71", "G71.1", "G71.2", "G72", "G72.1", "G72.2", "G70"])
+    along_z = cycle.startswith("G71") or (cycle == "G70" and rng.random() < 0.6)
+    lines, (sx, sz) = _profile(rng, k, along_z)
+    if rng.random() < 0.3:  # mirrored: an inside profile, or one that runs towards +Z
+        flip = rng.choice(["X", "Z"])
+        lines = [" ".join(w if not w.startswith(flip) else flip + num(-float(w[1:])) for w in ln.split())
+                 for ln in lines]
+        sx, sz = (-sx, sz) if flip == "X" else (sx, -sz)
+    out = [f"{u} G18 G90 F{num(150 * k)}", "o100 sub", *lines, "o100 endsub"]
+    if rng.random() < 0.15:
+        out.append("G7")
+        out[2:2 + len(lines)] = [" ".join(w if not w.startswith("X") else "X" + num(float(w[1:]) * 2)
+                                          for w in ln.split()) for ln in lines]
+        sx *= 2
+    out.append(f"G0 X{num(sx * k)} Z{num(sz * k)}")
+    words = [cycle, "Q100"]
+    if cycle == "G70":
+        if rng.random() < 0.5:
+            words += [f"D{num(rng.uniform(0, 1) * k)}", f"E{num(rng.uniform(0, 0.3) * k)}", f"P{rng.randint(1, 3)}"]
+    else:
+        words += [f"D{num(rng.uniform(0, 0.8) * k)}", f"I{num(rng.uniform(0.3, 2) * k)}"]
+        if rng.random() < 0.4:
+            words.append(f"R{num(rng.uniform(0.1, 1) * k)}")
+        if rng.random() < 0.05:
+            words[-1] = rng.choice(["I0", "I-1"])
+    if rng.random() < 0.2:
+        words.append(f"X{num((sx + 1) * k)}")
+    out.append(" ".join(words))
+    out.append(f"G0 X{num((abs(sx) + 5) * k)}")
+    return Program(_end(out, rng))
+
+
+def threading(rng: random.Random) -> Program:
+    """G76 with pitch, depths, degression, compound angle, spring passes and tapers (and its errors)."""
+    u, k = _units(rng)
+    out = [f"{u} G18 G90", rng.choice(["S300 M3", "S300 M3", "S300 M4", "S300 M3", ""])]
+    if rng.random() < 0.2:
+        out.append("G7")
+    x0, z0 = rng.uniform(2, 20) * k, rng.uniform(-2, 2) * k
+    out.append(f"G0 X{num(x0)} Z{num(z0)}")
+    j = rng.uniform(0.02, 0.3) * k
+    kk = j * rng.uniform(1.5, 12)
+    z1 = z0 + rng.choice([-1, -1, -1, 1]) * rng.uniform(5, 30) * k
+    words = ["G76", f"P{num(rng.uniform(0.5, 3) * k)}", f"Z{num(z1)}",
+             f"I{num(rng.choice([-1, -1, 1]) * rng.uniform(0.1, 2) * k)}", f"J{num(j)}", f"K{num(kk)}"]
+    optional = (("R", num(rng.uniform(0.8, 2.5))), ("Q", num(rng.choice([0, 29, 29.5, 30, 45]))),
+                ("H", str(rng.randint(0, 3))), ("E", num(rng.uniform(0, 2) * k)), ("L", str(rng.randint(0, 3))))
+    for letter, value in optional:
+        if rng.random() < 0.5:
+            words.append(letter + value)
+    if rng.random() < 0.08:  # a deliberate error: K not above J, J not positive, I zero, no P
+        bad = rng.choice(["K", "J", "I", "P"])
+        words = [w for w in words if not w.startswith(bad)]
+        words.append({"K": f"K{num(j / 2)}", "J": "J0", "I": "I0", "P": ""}[bad])
+    if rng.random() < 0.1:
+        words.insert(0, "G7")
+    out.append(" ".join(w for w in words if w))
+    out.append(f"G0 X{num(x0 + 5 * k)}")
+    return Program(_end(out, rng))
+
+
 FEATURES: dict[str, Callable[[random.Random], Program]] = {
     "lines": lines, "arcs_ijk": arcs_ijk, "arcs_r": arcs_r, "helix_turns": helix_turns,
     "work_offsets": work_offsets, "rotation": rotation, "g92_g52": g92_offsets, "tool_length": tool_length,
     "cycles": cycles, "cutter_comp": cutter_comp, "owords": owords, "path_feed": path_feed, "syntax": syntax,
     "parameters": parameters, "messages": messages, "m98_subs": m98_subs,
     "file_subs": file_subs,
+    "lathe_modes": lathe_modes, "lathe_roughing": lathe_roughing, "threading": threading,
 }
 
 

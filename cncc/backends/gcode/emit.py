@@ -229,7 +229,8 @@ class GcodeEmitter:
         return self.block([self.code("plane_xy"), self.code("inch" if self.units is Units.INCH else "metric"),
                            self.code("absolute"), self.code("feed_per_min")])
 
-    def _command(self, cmd: Command) -> Iterator[str]:
+    def _note_frame(self, cmd: Command) -> None:
+        """The power-on work system, and the axes a cancel or an outside move left held."""
         tf = self.tf
         if tf.work_mm is None and cmd.frame.work_index == 1:  # the power-on G54 (before a G55 ... of the program)
             tf.work_mm = tf.work_tables.setdefault(1, cmd.frame.work_offset_mm)
@@ -237,6 +238,9 @@ class GcodeEmitter:
             self.held = tuple(a or b for a, b in zip(self.held, cmd.frame.held_axes, strict=True))
         if isinstance(cmd, SetMode) and cmd.name == "held_axes":  # moved outside the program (M06, G28, G53)
             self.unknown |= {k for k, h in enumerate(cmd.value) if h}
+
+    def _command(self, cmd: Command) -> Iterator[str]:
+        self._note_frame(cmd)
         match cmd:
             case Rapid() | Linear() | Arc():
                 self._check_increment(cmd)
@@ -249,10 +253,7 @@ class GcodeEmitter:
             case SpindleSpeed():
                 yield self.block([f"S{fixed(cmd.rpm, 3)}"])
             case SelectTool():
-                limit = self.t.word_max.get("T")
-                if limit is not None and cmd.tool > limit:
-                    self.warn(dg.XL_WORD_RANGE, f"T{cmd.tool}: {self.t.name} takes tool numbers up to {limit:g}")
-                yield self.block([f"T{cmd.tool}"])
+                yield self._select_tool(cmd)
             case Spindle():
                 yield self.op_block(_SPINDLE_OPS[cmd.state], f"spindle {cmd.state.value}")
             case Coolant():
@@ -260,10 +261,7 @@ class GcodeEmitter:
             case ToolChange():
                 yield from self._tool_change(cmd)
             case Stop():
-                if self.cycle_initial is not None and cmd.kind in (StopKind.PROGRAM_END, StopKind.END_REWIND):
-                    yield self.block([self.t.code("cycle_off")])
-                    self.cycle_initial = None
-                yield self.op_block(_STOP_OPS[cmd.kind], cmd.kind.name.lower().replace("_", " "))
+                yield from self._stop(cmd)
             case Comment():
                 yield self.block([], cmd.text)
             case Message():
@@ -277,6 +275,18 @@ class GcodeEmitter:
                 yield from self._set_mode(cmd)
             case _:
                 pass
+
+    def _select_tool(self, cmd: SelectTool) -> str:
+        limit = self.t.word_max.get("T")
+        if limit is not None and cmd.tool > limit:
+            self.warn(dg.XL_WORD_RANGE, f"T{cmd.tool}: {self.t.name} takes tool numbers up to {limit:g}")
+        return self.block([f"T{cmd.tool}"])
+
+    def _stop(self, cmd: Stop) -> Iterator[str]:
+        if self.cycle_initial is not None and cmd.kind in (StopKind.PROGRAM_END, StopKind.END_REWIND):
+            yield self.block([self.t.code("cycle_off")])
+            self.cycle_initial = None
+        yield self.op_block(_STOP_OPS[cmd.kind], cmd.kind.name.lower().replace("_", " "))
 
     def _tool_change(self, cmd: ToolChange) -> Iterator[str]:
         code = self.t.code("tool_change")

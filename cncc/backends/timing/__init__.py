@@ -50,9 +50,9 @@ def timing_report(cmds: Sequence[Command], runs: Sequence[Run], src: SourceFile,
 
         return iter((annotate_time(rep, src, dialect),))
     if fmt == "json":
-        from cncc.backends.timing.jsonout import render_json
+        from cncc.backends.timing.jsonout import iter_json
 
-        return iter((render_json(rep),))
+        return iter_json(rep)
     if fmt == "html":
         from cncc.backends.timing.html import render_html
 

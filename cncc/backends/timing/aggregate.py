@@ -29,6 +29,7 @@ from cncc.backends.timing.model import (
     NS_PER_S,
     Column,
     LineRow,
+    LineTable,
     ProgramIndex,
     Run,
     TimingReport,
@@ -86,12 +87,19 @@ def _span_starts_to_lines(index: ProgramIndex, sources: SourceMap) -> None:
     """Turn the (source, span start) keys into (source, line) keys, merging same-line spans."""
     import numpy as np
 
-    remap: dict[tuple[int, int], int] = {}
-    new_id = np.zeros(len(index.line_keys), dtype=np.int64)
-    for k, (sid, start) in enumerate(index.line_keys):
+    keys = np.asarray(index.line_keys, dtype=np.int64).reshape(-1, 2)
+    line = np.zeros(len(keys), dtype=np.int64)
+    for sid in np.unique(keys[:, 0]).tolist():  # one sorted search per source file, not one per key
         src = sources.get(sid)
-        line = src.position(start).line if src is not None else 0
-        new_id[k] = remap.setdefault((sid, line), len(remap))
+        if src is None:
+            continue
+        mine = keys[:, 0] == sid
+        starts = np.asarray(src.line_starts, dtype=np.int64)
+        line[mine] = np.searchsorted(starts, keys[mine, 1], side="right")
+    remap: dict[tuple[int, int], int] = {}
+    new_id = np.fromiter((remap.setdefault(k, len(remap)) for k in zip(keys[:, 0].tolist(), line.tolist(),
+                                                                          strict=True)),
+                         np.int64, len(keys))
     index.line_keys = list(remap)
     index.cmd_line = new_id[index.cmd_line] if len(index.cmd_line) else index.cmd_line
 
@@ -192,19 +200,18 @@ def event_pauses(cmds: Sequence[Command], cmd_index: object, machine: MachineMod
     return [(i, ns) for i, ns, _ev, _cut in timed_events(cmds, event_cmds, covered, machine) if ns > 0]
 
 
-def _dominant(ns: object, names: tuple[str, ...]) -> list[str]:
-    """Per row of ``ns`` (shape ``(L, len(names))``), the name with the most time ("" if none)."""
+def _dominant_index(ns: object) -> object:
+    """Per row of ``ns`` (shape ``(L, K)``), the column with the most time (-1 if none)."""
     import numpy as np
 
     arr = np.asarray(ns)
     if arr.shape[0] == 0:
-        return []
-    best = arr.argmax(axis=1)
-    has = arr.max(axis=1) > 0
-    return [names[b] if h else "" for b, h in zip(best.tolist(), has.tolist(), strict=True)]
+        return np.zeros(0, dtype=np.int64)
+    return np.where(arr.max(axis=1) > 0, arr.argmax(axis=1), -1).astype(np.int64)
 
 
-def line_rows(columns: list[Column], index: ProgramIndex, sources: SourceMap) -> list[LineRow]:
+def line_table(columns: list[Column], index: ProgramIndex, sources: SourceMap) -> LineTable:
+    """The per-line arrays of the report (texts and N words read once per source file)."""
     import numpy as np
 
     primary = columns[0]
@@ -214,23 +221,36 @@ def line_rows(columns: list[Column], index: ProgramIndex, sources: SourceMap) ->
     cat_ns = np.zeros((n_lines, len(CATEGORIES)), dtype=np.int64)
     has_cat = index.cmd_cat >= 0
     np.add.at(cat_ns, (index.cmd_line[has_cat], index.cmd_cat[has_cat]), primary.cmd_ns[has_cat])
-    categories = _dominant(cat_ns, CATEGORIES)
-    limited_by = _dominant(primary.line_limit_ns, LIMIT_KEYS)
-    times = list(zip(*(c.line_ns.tolist() for c in columns), strict=True))
-    limit_rows = primary.line_limit_ns.tolist()
-    ends = line_end.tolist()
-    rows = []
+    files: dict[str, int] = {}
+    split: dict[int, list[str]] = {}
+    file_of = np.zeros(n_lines, dtype=np.int64)
+    texts: list[str] = []
+    numbers: list[str] = []
+    match = _N_WORD.match
     for k, (sid, line) in enumerate(index.line_keys):
         src = sources.get(sid)
-        text = src.line_text(line) if src is not None else ""
-        m = _N_WORD.match(text)
-        rows.append(LineRow(
-            index=k, file=src.name if src is not None else "<generated>", line=line,
-            n=m.group(1).replace(" ", "").upper() if m else "", text=text.strip(), times_ns=times[k],
-            category=categories[k], limited_by=limited_by[k],
-            limits_ns={key: v for key, v in zip(LIMIT_KEYS, limit_rows[k], strict=True) if v},
-            elapsed_ns=ends[k], operator_dependent=k in index.op_dependent_lines))
-    return rows
+        file_of[k] = files.setdefault(src.name if src is not None else "<generated>", len(files))
+        lines = split.get(sid)
+        if lines is None:
+            lines = split[sid] = src.text.split("\n") if src is not None else []
+        raw = lines[line - 1].rstrip("\r") if 1 <= line <= len(lines) else ""
+        m = match(raw)
+        numbers.append(m.group(1).replace(" ", "").upper() if m else "")
+        texts.append(raw.strip())
+    op = np.zeros(n_lines, dtype=bool)
+    op[[k for k in index.op_dependent_lines if 0 <= k < n_lines]] = True
+    times = np.stack([c.line_ns for c in columns], axis=1) if n_lines else np.zeros((0, len(columns)), np.int64)
+    return LineTable(
+        files=list(files), file_of=file_of,
+        line=np.asarray([line for _sid, line in index.line_keys], dtype=np.int64).reshape(-1),
+        n=numbers, text=texts, times_ns=times.astype(np.int64), category=_dominant_index(cat_ns),  # type: ignore[arg-type]
+        limited_by=_dominant_index(primary.line_limit_ns),  # type: ignore[arg-type]
+        limits_ns=primary.line_limit_ns, elapsed_ns=line_end, operator_dependent=op, categories=CATEGORIES)
+
+
+def line_rows(columns: list[Column], index: ProgramIndex, sources: SourceMap) -> list[LineRow]:
+    """The per-line rows as objects (tests and small reports; the report itself keeps a :class:`LineTable`)."""
+    return list(line_table(columns, index, sources))
 
 
 def build_report(cmds: Sequence[Command], runs: Sequence[Run], sources: SourceMap, file: str, dialect: str,
@@ -245,5 +265,5 @@ def build_report(cmds: Sequence[Command], runs: Sequence[Run], sources: SourceMa
             sink.emit(dg.TIME_CLAMPED, span, f"timing {col.run.label}: a time is too long or not finite; the "
                       f"report counts at most {MAX_S:g} s of motion and {MAX_S:g} s of events")
     nominal = next((k for k, r in enumerate(runs) if r.nominal), None)
-    return TimingReport(file, dialect, columns, nominal, line_rows(columns, index, sources), index, top_n)
+    return TimingReport(file, dialect, columns, nominal, line_table(columns, index, sources), index, top_n)
 

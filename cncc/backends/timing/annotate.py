@@ -57,9 +57,10 @@ def annotate_line(text: str, note: str, dialect: Dialect) -> str:
 
 def annotate_time(rep: TimingReport, src: SourceFile, dialect: Dialect) -> str:
     notes: dict[int, str] = {}
-    for row, (sid, line) in zip(rep.lines, rep.index.line_keys, strict=True):
+    rows = zip(rep.lines.elapsed_ns.tolist(), rep.lines.times_ns[:, 0].tolist(), rep.index.line_keys, strict=True)
+    for end_ns, t_ns, (sid, line) in rows:
         if sid == src.source_id:
-            notes[line] = f"t {to_s(row.elapsed_ns):.3f} s +{to_s(row.times_ns[0]):.3f} s"
+            notes[line] = f"t {to_s(end_ns):.3f} s +{to_s(t_ns):.3f} s"
     out = []
     for number, raw in enumerate(src.text.splitlines(keepends=True), 1):
         body = raw.rstrip("\r\n")

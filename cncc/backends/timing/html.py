@@ -157,7 +157,7 @@ def render_html(rep: TimingReport, cmds: Sequence[Command]) -> str:
     more = (f"<p class=note>{len(rep.lines) - MAX_LINES} more lines: see --report-format=json.</p>"
             if len(rep.lines) > MAX_LINES else "")
     op = (f"<p class=note>* operator-dependent (M00, M01, waits): {_s(p.operator_ns)} s assumed from the machine "
-          f"model.</p>" if any(r.operator_dependent for r in rep.lines) else "")
+          f"model.</p>" if bool(rep.lines.operator_dependent.any()) else "")
     top = rep.top()
     shown = rep.lines[:MAX_LINES]
     data = page_data(rep, cmds, [r.index for r in top] + [r.index for r in shown])

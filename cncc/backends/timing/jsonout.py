@@ -9,11 +9,13 @@ one entry per column (``columns``; the first is the primary).
 from __future__ import annotations
 
 import json
+from collections.abc import Iterator
 from importlib import resources
+from json.encoder import encode_basestring_ascii
 from typing import Any
 
 from cncc.backends.timing.events import CATEGORIES
-from cncc.backends.timing.model import Column, TimingReport, to_s
+from cncc.backends.timing.model import LIMIT_KEYS, NS_PER_S, Column, TimingReport, to_s
 
 SCHEMA_ID = "cncc-timing/1"
 
@@ -42,8 +44,10 @@ def _column(c: Column) -> dict[str, Any]:
     }
 
 
-def report_dict(rep: TimingReport) -> dict[str, Any]:
+def report_dict(rep: TimingReport, with_lines: bool = True) -> dict[str, Any]:
+    """The report as JSON-ready data (``with_lines=False``: a placeholder where the lines go)."""
     cols = rep.columns
+    lines = rep.lines
     p = rep.primary
     tools = sorted({t for c in cols for t in c.tool_ns})
     return {
@@ -65,21 +69,62 @@ def report_dict(rep: TimingReport) -> dict[str, Any]:
             "times_ns": list(r.times_ns), "times_s": [to_s(t) for t in r.times_ns],
             "category": r.category, "limited_by": r.limited_by, "limits_ns": r.limits_ns,
             "elapsed_s": to_s(r.elapsed_ns), "operator_dependent": r.operator_dependent,
-        } for r in rep.lines],
+        } for r in rep.lines] if with_lines else _LINES,
         "blocks": [{"n": n, "times_ns": list(ts), "times_s": [to_s(t) for t in ts]} for n, ts in rep.blocks()],
         "top": [{"file": r.file, "line": r.line, "n": r.n, "time_s": to_s(r.times_ns[0]),
                  "limited_by": r.limited_by} for r in rep.top()],
         "events": [{
-            "file": rep.lines[int(rep.index.cmd_line[i])].file, "line": rep.lines[int(rep.index.cmd_line[i])].line,
+            "file": lines.files[int(lines.file_of[k])], "line": int(lines.line[k]),
             "category": cat, "what": what, "operator_dependent": op, **_t(ns),
-        } for i, ns, cat, op, what in p.event_list],
+        } for i, ns, cat, op, what in p.event_list for k in (int(rep.index.cmd_line[i]),)],
     }
 
 
 INDENT_MAX_LINES = 2_000
 """Larger reports are written compactly (indenting makes json use its slow Python encoder)."""
 
+_LINES = "\u0000lines of the report\u0000"
+"""Placeholder for the lines in :func:`report_dict` (``with_lines=False``); no real value holds it."""
+
+LINES_PER_CHUNK = 4096
+
 
 def render_json(rep: TimingReport) -> str:
-    indent = 1 if len(rep.lines) <= INDENT_MAX_LINES else None
-    return json.dumps(report_dict(rep), indent=indent) + "\n"
+    return "".join(iter_json(rep))
+
+
+def iter_json(rep: TimingReport) -> Iterator[str]:
+    """The JSON report in pieces: byte for byte what ``json.dumps(report_dict(rep))`` writes
+    (indented up to :data:`INDENT_MAX_LINES` lines), with the lines formatted from the
+    report's arrays a chunk at a time instead of as one dict per line."""
+    if len(rep.lines) <= INDENT_MAX_LINES:
+        yield json.dumps(report_dict(rep), indent=1) + "\n"
+        return
+    head, tail = json.dumps(report_dict(rep, with_lines=False)).split(json.dumps(_LINES))
+    yield head + "["
+    for lo in range(0, len(rep.lines), LINES_PER_CHUNK):
+        yield ", ".join(_line_json(rep, lo, min(lo + LINES_PER_CHUNK, len(rep.lines))))
+        if lo + LINES_PER_CHUNK < len(rep.lines):
+            yield ", "
+    yield "]" + tail + "\n"
+
+
+def _line_json(rep: TimingReport, lo: int, hi: int) -> Iterator[str]:
+    """Lines ``lo:hi`` as json.dumps writes each line's dict (default separators, ASCII)."""
+    tab = rep.lines
+    enc = encode_basestring_ascii
+    files = [enc(f) for f in tab.files]
+    cats = [enc(c) for c in tab.categories] + [enc("")]  # index -1: ""
+    limits = [enc(k) for k in LIMIT_KEYS] + [enc("")]
+    limit_names = [enc(k) + ": " for k in LIMIT_KEYS]
+    t_ns = tab.times_ns[lo:hi].tolist()
+    lim_ns = tab.limits_ns[lo:hi].tolist()
+    rows = zip(tab.file_of[lo:hi].tolist(), tab.line[lo:hi].tolist(), tab.n[lo:hi], tab.text[lo:hi], t_ns,
+               tab.category[lo:hi].tolist(), tab.limited_by[lo:hi].tolist(), lim_ns, tab.elapsed_ns[lo:hi].tolist(),
+               tab.operator_dependent[lo:hi].tolist(), strict=True)
+    for f, line, n, text, ts, cat, lim, lns, end, op in rows:
+        given = ", ".join(name + repr(v) for name, v in zip(limit_names, lns, strict=True) if v)
+        yield (f'{{"file": {files[f]}, "line": {line}, "n": {enc(n)}, "text": {enc(text)}, '
+               f'"times_ns": [{", ".join(map(repr, ts))}], "times_s": [{", ".join(repr(v / NS_PER_S) for v in ts)}], '
+               f'"category": {cats[cat]}, "limited_by": {limits[lim]}, "limits_ns": {{{given}}}, '
+               f'"elapsed_s": {end / NS_PER_S!r}, "operator_dependent": {"true" if op else "false"}}}')

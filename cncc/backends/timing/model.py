@@ -11,8 +11,9 @@ Array shapes: ``n`` commands, ``L`` source lines that produced commands,
 
 from __future__ import annotations
 
+from collections.abc import Iterator
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, overload
 
 from cncc.ir.machine import MachineModel
 
@@ -119,12 +120,68 @@ class LineRow:
 
 
 @dataclass(slots=True)
+class LineTable:
+    """The report's source lines as columns of arrays (``L`` lines, ``C`` report columns).
+
+    A sequence of :class:`LineRow`: indexing, slicing and iteration build rows on demand,
+    so a million-line report never holds a million row objects; the aggregations
+    (:meth:`TimingReport.blocks`, :meth:`TimingReport.top`) and the JSON writer read the
+    arrays directly.  ``category`` and ``limited_by`` index ``categories`` and
+    ``LIMIT_KEYS`` (-1: none).
+    """
+
+    files: list[str]  # distinct file names
+    file_of: I64  # (L,) index into files
+    line: I64  # (L,) 1-based line number
+    n: list[str]  # (L,) the block's N word as written ("N010"), "" if none
+    text: list[str]  # (L,) the line's text, stripped
+    times_ns: I64  # (L, C)
+    category: I64  # (L,) index into ``categories`` (-1: none)
+    limited_by: I64  # (L,) index into LIMIT_KEYS (-1: none)
+    limits_ns: I64  # (L, K) primary column
+    elapsed_ns: I64  # (L,) primary column: wall time at the end of the line's last command
+    operator_dependent: npt.NDArray[np.bool_]  # (L,)
+    categories: tuple[str, ...] = ()
+
+    def __len__(self) -> int:
+        return len(self.text)
+
+    def row(self, k: int) -> LineRow:
+        limits = self.limits_ns[k].tolist()
+        cat, lim = int(self.category[k]), int(self.limited_by[k])
+        return LineRow(
+            index=k, file=self.files[int(self.file_of[k])], line=int(self.line[k]), n=self.n[k], text=self.text[k],
+            times_ns=tuple(self.times_ns[k].tolist()), category=self.categories[cat] if cat >= 0 else "",
+            limited_by=LIMIT_KEYS[lim] if lim >= 0 else "",
+            limits_ns={key: v for key, v in zip(LIMIT_KEYS, limits, strict=True) if v},
+            elapsed_ns=int(self.elapsed_ns[k]), operator_dependent=bool(self.operator_dependent[k]))
+
+    @overload
+    def __getitem__(self, k: int) -> LineRow: ...
+
+    @overload
+    def __getitem__(self, k: slice) -> list[LineRow]: ...
+
+    def __getitem__(self, k: int | slice) -> LineRow | list[LineRow]:
+        if isinstance(k, slice):
+            return [self.row(i) for i in range(*k.indices(len(self)))]
+        if k < 0:
+            k += len(self)
+        if not 0 <= k < len(self):
+            raise IndexError(k)
+        return self.row(k)
+
+    def __iter__(self) -> Iterator[LineRow]:
+        return (self.row(k) for k in range(len(self)))
+
+
+@dataclass(slots=True)
 class TimingReport:
     file: str
     dialect: str
     columns: list[Column]
     nominal: int | None  # index of the nominal column, if any
-    lines: list[LineRow]
+    lines: LineTable
     index: ProgramIndex
     top_n: int = 10
 
@@ -134,16 +191,24 @@ class TimingReport:
 
     def blocks(self) -> list[tuple[str, tuple[int, ...]]]:
         """Time per ``N`` label (lines without one under ``""``), in first-use order."""
-        acc: dict[str, list[int]] = {}
-        for row in self.lines:
-            cur = acc.setdefault(row.n, [0] * len(self.columns))
-            for k, t in enumerate(row.times_ns):
-                cur[k] += t
-        return [(n, tuple(v)) for n, v in acc.items()]
+        import numpy as np
+
+        group: dict[str, int] = {}
+        of = np.fromiter((group.setdefault(n, len(group)) for n in self.lines.n), np.int64, len(self.lines))
+        times = self.lines.times_ns
+        sums = np.zeros((len(group), times.shape[1] if times.ndim == 2 else 0), dtype=np.int64)
+        np.add.at(sums, of, times)
+        return [(n, tuple(v)) for n, v in zip(group, sums.tolist(), strict=True)]
 
     def top(self) -> list[LineRow]:
-        ranked = sorted(self.lines, key=lambda r: (-r.times_ns[0], r.index))
-        return [r for r in ranked[: self.top_n] if r.times_ns[0] > 0]
+        """The ``top_n`` lines with the most primary-column time (ties: the earlier line first)."""
+        import numpy as np
+
+        if not len(self.lines):
+            return []
+        t = self.lines.times_ns[:, 0]
+        order = np.lexsort((np.arange(t.size), -t))[: self.top_n]
+        return [self.lines.row(int(k)) for k in order if t[k] > 0]
 
 
 def hms(t_ns: int) -> str:

@@ -62,7 +62,7 @@ def render_text(rep: TimingReport, color: bool = False, width: int | None = None
     if nom is not None and nom != 0:
         con.print(f"  planned vs nominal: {_gap(p.total_ns, cols[nom].total_ns)} "
                   f"({_s(p.total_ns - cols[nom].total_ns)} s the length/feed estimate misses)")
-    if p.operator_ns or any(r.operator_dependent for r in rep.lines):
+    if p.operator_ns or bool(rep.lines.operator_dependent.any()):
         con.print(f"  * operator-dependent stops and waits: {_s(p.operator_ns)} s assumed (machine model)")
 
     def table(title: str, first: str) -> Table:
@@ -88,7 +88,7 @@ def render_text(rep: TimingReport, color: bool = False, width: int | None = None
     con.print(t)
     con.print(_line_table(rep, rep.top(), f"the {rep.top_n} slowest blocks", labels, con.width))
     blocks = rep.blocks()
-    if len(blocks) < sum(1 for r in rep.lines if r.n) + (1 if any(not r.n for r in rep.lines) else 0):
+    if len(blocks) < sum(1 for n in rep.lines.n if n) + (1 if any(not n for n in rep.lines.n) else 0):
         t = table("time per N block", "N")
         for n, ts in blocks:
             t.add_row(n or "(none)", *map(_s, ts))
@@ -107,7 +107,7 @@ def _line_table(rep: TimingReport, rows: list[LineRow], title: str, labels: list
     from rich.markup import escape
     from rich.table import Table
 
-    multi_file = len({r.file for r in rep.lines}) > 1
+    multi_file = len(rep.lines.files) > 1
     heads = ["line", "N"] + (["elapsed [s]"] if elapsed else []) + [f"{lab} [s]" for lab in labels] + ["limited by"]
     body = []
     for r in rows:

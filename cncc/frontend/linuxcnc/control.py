@@ -128,7 +128,7 @@ def _repeat(ex: LinuxcncExecutor, fr: Frame, i: int, ow: OWord, args: list[float
 
 
 def _call(ex: LinuxcncExecutor, fr: Frame, ow: OWord, args: list[float], span: Span) -> None:
-    from cncc.frontend.linuxcnc.executor import Frame
+    from cncc.frontend.linuxcnc.frames import Frame
 
     index = fr.index
     found = index.subs.get(ow.label)
@@ -194,7 +194,7 @@ def m98_block(ex: LinuxcncExecutor, fr: Frame, block: Block, words: tuple[Word, 
 
 def run_m98(ex: LinuxcncExecutor, fr: Frame, block: Block, words: tuple[Word, ...], m: Word) -> None:
     """Fanuc-style M98 P<n> L<count> (call program O<n> of this file) and M99 (return)."""
-    from cncc.frontend.linuxcnc.executor import Frame
+    from cncc.frontend.linuxcnc.frames import Frame
 
     span = fr.index.span(block)
     if round(m.value) == 99:

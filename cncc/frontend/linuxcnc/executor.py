@@ -15,16 +15,20 @@ from __future__ import annotations
 import os
 import re
 from collections.abc import Iterator
-from dataclasses import dataclass, field
 
 from cncc import diagnostics as dg
 from cncc.diagnostics import DiagnosticSink, Related
 from cncc.dialects import Dialect
 from cncc.dialects.errors import ControllerSink, ControllerTexts
 from cncc.frontend.interp import Interpreter
+from cncc.frontend.linuxcnc import g76 as _g76  # noqa: F401  (registers G76)
+from cncc.frontend.linuxcnc.control import m98_block, run_oword
 from cncc.frontend.linuxcnc.evaluate import EvalError, Evaluator, Parameters, Scope
 from cncc.frontend.linuxcnc.fastblock import run_plain
 from cncc.frontend.linuxcnc.flow import FlowIndex
+from cncc.frontend.linuxcnc.frames import Frame as Frame  # re-exported
+from cncc.frontend.linuxcnc.g7x import cycle_word, run_g7x
+from cncc.frontend.linuxcnc.lathe import block_words, diameter_mode
 from cncc.frontend.linuxcnc.messages import format_message
 from cncc.frontend.linuxcnc.params import SystemParameters, read_only_number
 from cncc.frontend.linuxcnc.report import Before, Reporter
@@ -38,27 +42,11 @@ FAST_MOVES = True  # plain moves take cncc.frontend.linuxcnc.fastblock's path (t
 _PARAM_IN_TEXT = re.compile(r"#\s*<[^>]*>|#\d+")
 
 
-@dataclass(slots=True)
-class Frame:
-    """One running program or subroutine."""
-
-    index: FlowIndex
-    pc: int
-    name: str = "main"
-    return_pc: int = -1
-    caller: Frame | None = None
-    call_span: Span | None = None
-    repeats: dict[int, int] = field(default_factory=dict)
-    m98_count: int = 0
-    m98_start: int = 0
-
-
 class LinuxcncExecutor:
     def __init__(self, dialect: Dialect, sink: DiagnosticSink, it: Interpreter, parser: Parser,
                  include_dirs: tuple[str, ...] = (), max_steps: int = 5_000_000) -> None:
         self.dialect = dialect
-        self.sink = ControllerSink(sink, ControllerTexts(dialect.raw.get("errors", {})))
-        it.sink = self.sink
+        self.sink = ControllerSink(sink, ControllerTexts(dialect.raw.get("errors", {})))  # the run's (see run)
         self.it = it
         self.parser = parser
         self.system = SystemParameters(it, lambda: len(self.stack) - 1)
@@ -81,6 +69,7 @@ class LinuxcncExecutor:
         self.out: list[Command] = []
         self.stopped = False
         self.fast = FAST_MOVES
+        self.capture: list[tuple[Span, tuple[Word, ...]]] | None = None  # a G7x profile being read (g7x.py)
 
     # ---- diagnostics
     def fail(self, code: str, span: Span, message: str, detail: str = "") -> None:
@@ -113,6 +102,10 @@ class LinuxcncExecutor:
 
     # ---- running
     def run(self, src: SourceFile) -> Iterator[Command]:
+        with self.it.redirect(sink=self.sink):  # the interpreter reports in the controller's words too
+            yield from self._run(src)
+
+    def _run(self, src: SourceFile) -> Iterator[Command]:
         index = FlowIndex.build(list(self.parser.blocks(src)), src, self.sink)
         if index is None:
             return
@@ -179,8 +172,6 @@ class LinuxcncExecutor:
         try:
             oword = fr.index.owords.get(i)
             if oword is not None:
-                from cncc.frontend.linuxcnc.control import run_oword
-
                 run_oword(self, fr, i, oword)
             else:
                 self._block(fr, block)
@@ -190,27 +181,37 @@ class LinuxcncExecutor:
             self.stopped = True
 
     def _block(self, fr: Frame, block: Block) -> None:
-        for st in block.statements:  # rs274 2.9 defines a named parameter (as 0) when it reads its assignment,
-            if isinstance(st, Assign) and st.target.index is None and self.params.lookup(st.target.name) is None:
-                self.params.write_name(st.target.name, 0.0)  # so the line's own reads of it find 0
+        self._define_names(block)
         words = self._drop_g80(tuple(self._value_word(w) for w in block.words))
         sets = [(s.target, self.ev.number(s.expr)) for s in block.statements if isinstance(s, Assign)]
         for target, value in sets:
             self._assign(target, value)
-        if self.fast:  # after every rewrite of the words: the fast path takes them as they run
+        if self.fast and self.capture is None and not diameter_mode(self.it):  # G7x profiles, G7: the full path
             plain = run_plain(self.it, block, words)
             if plain is not None:
                 self.out.extend(plain)
                 return
+        words = block_words(self.it, words, capture=self.capture is not None)  # G7: X is a diameter
+        if self.capture is not None:  # the profile of a G70-G72: its moves are collected, not run
+            self.capture.append((fr.index.span(block), words))
+            return
+        if (g7x := cycle_word(words)) is not None:
+            run_g7x(self, fr, block, words, g7x)
+            return
         comments = self._messages(fr, block)
         if any(w.letter == "M" and round(w.value) in (98, 99) for w in words):
-            from cncc.frontend.linuxcnc.control import m98_block
-
             words = m98_block(self, fr, block, words)
             if not words:
                 self._run_words(block, (), comments)
                 return
         self._run_words(block, words, comments)
+
+    def _define_names(self, block: Block) -> None:
+        """rs274 2.9 defines a named parameter (as 0) when it reads its assignment, so the line's own
+        reads of it find 0."""
+        for st in block.statements:
+            if isinstance(st, Assign) and st.target.index is None and self.params.lookup(st.target.name) is None:
+                self.params.write_name(st.target.name, 0.0)
 
     def _run_words(self, block: Block, words: tuple[Word, ...], comments: tuple[CommentItem, ...]) -> None:
         if not words and not comments:

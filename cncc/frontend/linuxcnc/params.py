@@ -23,6 +23,7 @@ from __future__ import annotations
 from collections.abc import Callable
 from typing import TYPE_CHECKING
 
+from cncc.frontend.linuxcnc.lathe import diameter_mode
 from cncc.ir import Command, CompSide, Coolant, CoolantState, Plane, Spindle, SpindleState, ToolChange, Vec6
 
 if TYPE_CHECKING:
@@ -204,6 +205,8 @@ class SystemParameters:
             "_current_tool": lambda: float(it.modal.tool_loaded),
             "_selected_tool": lambda: float(it.modal.tool_selected),
             "_call_level": lambda: float(self.call_level()),
+            "_lathe_diameter_mode": flag(lambda: diameter_mode(it)),
+            "_lathe_radius_mode": flag(lambda: not diameter_mode(it)),
         }
         for i, axis in enumerate(_AXES):
             table[f"_{axis}"] = self._reader(self._position, i)

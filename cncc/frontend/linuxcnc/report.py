@@ -325,7 +325,7 @@ class Reporter:
         up = _with(c.start, n, c.r_mm)
         data = cycles.cycle_data(self.it)
         if data is not None:  # later blocks of this cycle keep R as their initial level
-            cycles._DATA[self.it] = replace(data, initial_mm=c.r_mm)
+            self.it.cycle = replace(self.it.cycle, data=replace(data, initial_mm=c.r_mm))
         rise = Rapid(c.span, c.frame, c.start, up, c.motion, c.code)
         return replace(c, start=up, initial_mm=c.r_mm), rise  # the holes end at R (G99) or max(start, R) = R
 

@@ -23,11 +23,20 @@ from cncc.ir import Command
 from cncc.source import SourceFile
 
 MACRO_FLAVOURS = frozenset({"fanuc", "szgh"})
-_HINTS = re.compile(r"#|\[|=|GOTO|WHILE|IF|THEN|WAT|OUT|MSG|STAF|FILE|PP", re.IGNORECASE)
 
 
 def _code_pattern(dialect: Dialect) -> re.Pattern[str]:
     return dialect.derived("macro.code_pattern", _build_code_pattern)
+
+
+def _hints(dialect: Dialect) -> re.Pattern[str]:
+    """Variables, expressions, assignments, or one of the dialect's ``executor_marks``."""
+    return dialect.derived("macro.hints", _build_hints)
+
+
+def _build_hints(dialect: Dialect) -> re.Pattern[str]:
+    marks = [re.escape(m) for m in dialect.lexicon.executor_marks]
+    return re.compile("|".join([r"#", r"\[", "=", *marks]), re.IGNORECASE)
 
 
 def _build_code_pattern(dialect: Dialect) -> re.Pattern[str]:
@@ -48,7 +57,7 @@ def needs_executor(text: str, dialect: Dialect) -> bool:
         return False
     if remaps_cycles(dialect):
         return True  # User P500-P504: cycle codes call programs
-    return _HINTS.search(text) is not None or _code_pattern(dialect).search(text) is not None
+    return _hints(dialect).search(text) is not None or _code_pattern(dialect).search(text) is not None
 
 
 def run_program(src: SourceFile, dialect: Dialect, sink: DiagnosticSink, options: InterpOptions,

@@ -190,16 +190,17 @@ class Executor:
                               f"recursion? (--max-steps raises the budget)")
                     break
                 self.block = block
-                self.it.source_id = fr.unit.source.source_id
-                if trace is not None:
-                    trace(self, block, False)
-                try:
-                    self._run_block(fr, i, block)
-                except MacroError as exc:
-                    span = fr.unit.span(exc.start, exc.end) if exc.start >= 0 else fr.unit.span(block.start, block.end)
-                    self.fail(exc.code, span, exc.message)
-                if trace is not None:
-                    trace(self, block, True)
+                with self.it.redirect(source_id=fr.unit.source.source_id):  # the block's file
+                    if trace is not None:
+                        trace(self, block, False)
+                    try:
+                        self._run_block(fr, i, block)
+                    except MacroError as exc:
+                        span = (fr.unit.span(exc.start, exc.end) if exc.start >= 0
+                                else fr.unit.span(block.start, block.end))
+                        self.fail(exc.code, span, exc.message)
+                    if trace is not None:
+                        trace(self, block, True)
             if self.out:
                 yield from self.out
                 self.out = []

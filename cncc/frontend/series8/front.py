@@ -1,6 +1,6 @@
 """The SERIES 8 block loop: parse, interpret, insert corners.
 
-``lower_series8`` is what :func:`cncc.frontend.dialect_front.lower_checked` runs for
+``lower_series8`` is what the ``series8`` front end (:mod:`cncc.frontend.plugins`) runs for
 the ``series8`` dialect.  Around each block it:
 
 * refuses in strict mode what the manual never shows ('%', '/', O words, ( )
@@ -20,6 +20,7 @@ from cncc import diagnostics as dg
 from cncc.diagnostics import DiagnosticSink
 from cncc.dialects import Dialect
 from cncc.frontend import ops
+from cncc.frontend.handler_tables import core_table
 from cncc.frontend.interp import InterpOptions, Interpreter
 from cncc.frontend.parser import ParseOptions, Parser
 from cncc.frontend.series8 import arcs as _arcs  # noqa: F401  (registers the arc rules)
@@ -38,7 +39,7 @@ from cncc.source import SourceFile, Span
 @functools.cache
 def handler_table() -> ops.HandlerTable:
     """The core table with the SERIES 8 layer on top (every registering module is imported above)."""
-    return LAYER.compose(ops.core_table())
+    return LAYER.compose(core_table())
 
 
 def lower_series8(src: SourceFile, dialect: Dialect, sink: DiagnosticSink, options: InterpOptions) -> Iterator[Command]:

@@ -1,8 +1,8 @@
-"""Per-interpreter SERIES 8 state kept beside the shared modal snapshot."""
+"""SERIES 8 run state beside the shared modal snapshot: a record in the interpreter's
+dialect-layer records (``Interpreter.extras``, :class:`~cncc.frontend.run_state.LayerRecords`)."""
 
 from __future__ import annotations
 
-import weakref
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
@@ -47,17 +47,14 @@ class S8State:
     vendor_noted: set[str] = field(default_factory=set)  # G34-G36, G49/G50 whose reading was announced
 
 
-_STATES: weakref.WeakKeyDictionary[Interpreter, S8State] = weakref.WeakKeyDictionary()
-
-
 def attach(it: Interpreter) -> S8State:
-    st = _STATES[it] = S8State()
-    return st
+    """Give ``it`` a fresh SERIES 8 record (in its dialect-layer records, ``Interpreter.extras``)."""
+    return it.extras.attach(S8State())
 
 
 def get(it: Interpreter) -> S8State | None:
     """The SERIES 8 state of ``it``; None for interpreters of other dialects."""
-    return _STATES.get(it)
+    return it.extras.get(S8State)
 
 
 def option(it: Interpreter, key: str, default: Any) -> Any:

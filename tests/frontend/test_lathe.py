@@ -1,0 +1,164 @@
+"""LinuxCNC's lathe codes without the oracle: G7/G8, G70-G72, G76 (tests/oracle has the rs274 comparisons).
+
+Expected values come from LinuxCNC's G-code manual (11.5.10 G7, 11.5.38-39 G70-G72, 11.5.42 G76) or are
+computed here independently of cncc's code.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+import re
+import time
+
+import pytest
+
+from tests.helpers import calls, canon, codes, compile_text
+
+PROFILE = "o100 sub\nG1 X2 Z0\nX4 Z-5\nX8 Z-12\no100 endsub\n"
+
+
+def _moves(text: str) -> list[tuple[str, list[float]]]:
+    lines, r = canon(text, "linuxcnc")
+    assert r.ok, [d.message for d in r.sink]
+    return calls(lines, "STRAIGHT_TRAVERSE", "STRAIGHT_FEED", "ARC_FEED")
+
+
+# ---- G7 / G8 -------------------------------------------------------------------------------------
+def test_g7_x_words_are_diameters() -> None:
+    # Manual: "X1 would move the cutter to 0.500 from the center" in diameter mode; G8 is the default.
+    got = _moves("G21 G18\nG0 X10 Z1\nG7\nG0 X10\nG91 G0 X4\nG90 G8 G0 X3\nM2\n")
+    assert [m[1][0] for m in got] == [10.0, 5.0, 7.0, 3.0]
+
+
+def test_g7_in_the_block_applies_to_its_own_x() -> None:
+    got = _moves("G21 G18\nG7 G0 X10 Z1\nG8 G0 X10\nM2\n")
+    assert [m[1][0] for m in got] == [5.0, 10.0]
+
+
+def test_g7_arc_centre_stays_a_radius() -> None:
+    # A half circle from X5 (diameter 10) to X5 about the centre 2 below in Z: I/K are not halved.
+    got = _moves("G21 G18 F100\nG7 G0 X10 Z0\nG2 X10 Z-4 I0 K-2\nM2\n")
+    name, args = got[-1]
+    assert name == "ARC_FEED" and args[0] == -4.0 and args[1] == 5.0
+
+
+# ---- G70 / G71 / G72 ----------------------------------------------------------------------------------
+def _offset_z_at(x: float, d: float) -> float:
+    """Where the profile X2 Z0 - X4 Z-5 - X8 Z-12 moved outwards (to +X) by d meets the level x: Z of the
+    roughing stroke's end (computed here from the profile, not with cncc's geometry)."""
+    pts = [(0.0, 2.0), (-5.0, 4.0), (-12.0, 8.0)]  # (z, x)
+    best = -math.inf
+    for (z0, x0), (z1, x1) in itertools.pairwise(pts):
+        dz, dx = z1 - z0, x1 - x0
+        length = math.hypot(dz, dx)
+        nz, nx = dx / length, -dz / length  # the normal towards +X (dz < 0)
+        oz0, ox0, ox1 = z0 + d * nz, x0 + d * nx, x1 + d * nx
+        if min(ox0, ox1) - 1e-9 <= x <= max(ox0, ox1) + 1e-9:
+            best = max(best, oz0 + (x - ox0) / (ox1 - ox0) * dz)
+    return best
+
+
+def test_g71_strokes_end_on_the_profile_moved_by_d() -> None:
+    got = _moves("G21 G18 F100\n" + PROFILE + "G0 X10 Z2\nG71 Q100 D0.5 I1\nM2\n")
+    strokes = [(a[0], a[2]) for n, a in got if n == "STRAIGHT_FEED"]
+    levels = [x for x, _ in strokes]
+    assert levels[:4] == [10.0, 9.0, 8.0, 7.0]  # from the start X, one I deeper each stroke
+    for x, z in strokes[:6]:
+        want = _offset_z_at(x, 0.5)
+        if want > -12:  # strokes that end on a sloped part of the profile
+            assert z == pytest.approx(want, abs=1e-4)  # canon prints 4 decimals
+
+
+def test_g70_passes_approach_the_profile() -> None:
+    # Manual: the distance of pass n is (n-1)*(D-E)/P + E; the last pass (E0) runs on the profile.
+    got = _moves("G21 G18 F100\n" + PROFILE + "G0 X10 Z2\nG70 Q100 D1 P2\nM2\n")
+    feeds = [a for n, a in got if n == "STRAIGHT_FEED"]
+    assert feeds[-1][:3] == [8.0, 0.0, -12.0]
+    assert feeds[-2][:3] == [4.0, 0.0, -5.0]
+
+
+def test_g72_faces_along_x() -> None:
+    # G72 removes material while traversing X: its strokes keep Z, the levels step by I from the start Z.
+    got = _moves("G21 G18 F100\no100 sub\nG1 X0 Z-6\nX4 Z-5\nX8 Z-2\no100 endsub\nG0 X10 Z2\nG72 Q100 I1\nM2\n")
+    prev = None
+    levels = []
+    for name, a in got:
+        if name == "STRAIGHT_FEED" and prev is not None and a[2] == prev[2] and a[0] != prev[0]:
+            levels.append(a[2])
+        prev = a
+    assert levels[:3] == [2.0, 1.0, 0.0]
+
+
+@pytest.mark.parametrize(("text", "code", "line"), [
+    ("G21 G18 F100\nG0 X10 Z5\nG71 D0.5\nM2\n", "E0481", 3),  # no Q
+    ("G21 G18 F100\n" + PROFILE + "G0 X10 Z2\nG71 Q100 I0\nM2\n", "E0481", 8),  # I must be above zero
+    ("G21 G17 F100\n" + PROFILE + "G0 X10 Z2\nG71 Q100\nM2\n", "E0482", 8),  # not G18
+    ("G21 G18 F100\no100 sub\nG1 X2 Z0\nX4 Z-5\nX6 Z-2\no100 endsub\nG0 X10 Z2\nG71 Q100\nM2\n", "E0480", 8),
+    ("G21 G18 F100\nG0 X10 Z5\nG71 Q999\nM2\n", "E0351", 3),  # no subroutine o999
+])
+def test_g7x_bad_input_is_a_positioned_error(text: str, code: str, line: int) -> None:
+    r = compile_text(text, dialect="linuxcnc", emit="canon")
+    assert not r.ok and code in codes(r)
+    d = next(d for d in r.sink if d.code == code)
+    assert text[:d.span.start].count("\n") + 1 == line
+
+
+def test_g71_endless_loop_of_linuxcnc_2_9_stops() -> None:
+    # rs274 2.9.0 never finishes this program (tests/oracle/test_lathe_hang.py); cncc stops with E0480.
+    text = ("G21 G18 F100\no100 sub\nG1 X0 Z0\nG1 X1\nG3 X3 Z-2 R2\no100 endsub\nG0 X4 Z1\nG71 Q100 D1 I0.5\nM2\n")
+    t0 = time.process_time()
+    r = compile_text(text, dialect="linuxcnc", emit="canon")
+    assert time.process_time() - t0 < 5.0
+    assert "E0480" in codes(r)
+
+
+# ---- G76 ------------------------------------------------------------------------------------------------
+def test_g76_pass_depths_follow_the_manual() -> None:
+    # Manual: the first cut is J beyond the thread peak, the last K; with R1 the depth grows by J a pass
+    # (depth n = |I| + J * n ** (1/R)), then H spring passes at full depth.  External thread (I < 0).
+    i, j, k, h = -0.5, 0.1, 0.45, 1
+    got = _moves(f"G21 G18 S100 M3\nG0 X10 Z0\nG76 P1 Z-10 I{i} J{j} K{k} H{h}\nM2\n")
+    cuts = [a[0] for n, a in got if n == "STRAIGHT_FEED"]
+    want, depth, n = [], abs(i) + j, 1
+    while depth < abs(i) + k:
+        want.append(10 - depth)
+        n += 1
+        depth = abs(i) + j * n
+    want += [10 - abs(i) - k] * (h + 1)
+    assert cuts == pytest.approx(want, abs=1e-4)
+
+
+def test_g76_is_synchronised_with_the_spindle() -> None:
+    lines, r = canon("G21 G18 S100 M3\nG0 X10 Z0\nG76 P1.5 Z-10 I-0.5 J0.1 K0.3\nM2\n", "linuxcnc")
+    text = "\n".join(lines)
+    assert r.ok
+    assert text.count("START_SPEED_FEED_SYNC(1.500000,0)") == text.count("STOP_SPEED_FEED_SYNCH()") > 0
+    assert text.count("DISABLE_FEED_OVERRIDE()") == text.count("ENABLE_FEED_OVERRIDE()")
+
+
+@pytest.mark.parametrize(("words", "code"), [("P1 Z-5 I-1 J0.5 K0.5", "E0481"), ("Z-5 I-1 J0.1 K0.5", "E0481"),
+                                             ("P1 Z-5 I0 J0.1 K0.5", "E0481")])
+def test_g76_bad_words(words: str, code: str) -> None:
+    r = compile_text(f"G21 G18 S100 M3\nG0 X10 Z2\nG76 {words}\nM2\n", dialect="linuxcnc", emit="canon")
+    assert not r.ok and code in codes(r)
+
+
+def test_g76_needs_a_turning_spindle() -> None:
+    r = compile_text("G21 G18\nG0 X10 Z2\nG76 P1 Z-5 I-1 J0.1 K0.5\nM2\n", dialect="linuxcnc", emit="canon")
+    assert not r.ok and "E0250" in codes(r)
+
+
+# ---- translation -------------------------------------------------------------------------------------------
+@pytest.mark.parametrize("target", ["fanuc", "grbl", "haas", "linuxcnc"])
+def test_lathe_cycles_translate_to_plain_moves(target: str) -> None:
+    text = ("G21 G18 F100\n" + PROFILE + "G0 X10 Z2\nG71 Q100 D0.5 I1\nG70 Q100\nS300 M3\n"
+            "G76 P1.5 Z-10 I-1 J0.2 K0.9\nG0 X20\nM2\n")
+    r = compile_text(text, dialect="linuxcnc", emit="gcode", target=target)
+    assert r.ok, [d.message for d in r.sink]
+    out = r.output
+    assert not re.search(r"\bG7[0-6]\b", out)  # no cycle the target would read otherwise
+    assert not re.search(r"\b[YABC]-?[\d.]", out)  # only X and Z move, as in the program
+    canon_x = {round(a[0], 3) for _, a in _moves(text)}
+    written_x = {round(float(m), 3) for m in re.findall(r"\bX(-?[\d.]+)", out)}
+    assert written_x <= canon_x
