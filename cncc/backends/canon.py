@@ -90,7 +90,7 @@ def canon_lines(cmds: Iterable[Command], *, initial_frame: Frame | None = None,
     last_g5x, last_g92 = g5x, g92
     skip = 0  # commands folded into one call (RIGID_TAP, NURBS_FEED) that are not written
     offsets: dict[int, tuple[Frame, tuple[str, str]]] = {}  # frames are shared: format once each
-    for c in cmds:
+    for c in _unwrapped(cmds):
         if skip:
             skip -= 1
             continue
@@ -111,6 +111,8 @@ def canon_lines(cmds: Iterable[Command], *, initial_frame: Frame | None = None,
             yield PREFIX + line
             continue
         match c:
+            case SetMode(name="interpreter_report"):
+                yield from _report(c, fmt)
             case SetMode(name="rigid_tap" | "nurbs_feed" | "probe") if fmt.has(c.name):
                 skip = int(c.value[-1])
                 yield from _lines(fmt, c.name, **_folded_fields(c))
@@ -123,6 +125,23 @@ def canon_lines(cmds: Iterable[Command], *, initial_frame: Frame | None = None,
                 key, fields = _other(c)
                 yield from _lines(fmt, key, **fields)
     yield from _lines(fmt, "end_of_trace")
+
+
+def _report(c: SetMode, fmt: CanonFormat) -> Iterator[str]:
+    """An interpreter report, written with its [canon.comments] text (none: not written)."""
+    text = fmt.comments.get(str(c.value))
+    if text is not None:
+        yield PREFIX + f'COMMENT("{text}")'
+
+
+def _unwrapped(cmds: Iterable[Command]) -> Iterator[Command]:
+    """``cmds`` with the commands of each ``SetMode("trace_only", commands)`` in its place: calls that
+    only the interpreter's trace shows (LinuxCNC's resets at M2), not the program's own."""
+    for c in cmds:
+        if isinstance(c, SetMode) and c.name == "trace_only":
+            yield from c.value
+        else:
+            yield c
 
 
 def _one_line(c: Command, fmt: CanonFormat) -> str | None:
@@ -205,13 +224,18 @@ def _set_mode(c: SetMode, last_g5x: str, last_g92: str, fmt: CanonFormat) -> Ite
             yield from _lines(fmt, "spindle_sync_off")
     elif c.name == "tool_table":
         yield from _tool_table(c, fmt)
-    elif c.name == "overrides":  # value: True (on) / False (off)
+    elif c.name in ("overrides", "feed_override", "spindle_mode"):
+        yield from _switch_mode(c, fmt)
+
+
+def _switch_mode(c: SetMode, fmt: CanonFormat) -> Iterator[str]:
+    if c.name == "overrides":  # value: True (on) / False (off)
         yield from _lines(fmt, "overrides_on" if c.value else "overrides_off")
     elif c.name == "tool_number":
         yield from _lines(fmt, "tool_number", tool=int(c.value))
     elif c.name == "feed_override":  # value: True (on) / False (off)
         yield from _lines(fmt, "feed_override_on" if c.value else "feed_override_off")
-    elif c.name == "spindle_mode":
+    else:
         yield from _lines(fmt, "spindle_mode", css_max=float(c.value or 0.0))
 
 
