@@ -224,7 +224,7 @@ def _set_mode(c: SetMode, last_g5x: str, last_g92: str, fmt: CanonFormat) -> Ite
             yield from _lines(fmt, "spindle_sync_off")
     elif c.name == "tool_table":
         yield from _tool_table(c, fmt)
-    elif c.name in ("overrides", "feed_override", "spindle_mode"):
+    elif c.name in ("overrides", "tool_number", "feed_override", "spindle_mode"):
         yield from _switch_mode(c, fmt)
 
 

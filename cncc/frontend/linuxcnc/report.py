@@ -77,7 +77,7 @@ _P_CYCLES = frozenset({"drill_dwell", "tap_rs274", "tap_left_rs274", "bore_dwell
                        "bore_dwell_feed_out_rs274"})
 _P_MODAL_OPS = frozenset({"arc_cw", "arc_ccw", "cubic_spline", "nurbs_begin"})
 _Q_G_CODES = frozenset({50, 100, 640, 730, 760, 830})
-_Q_M_CODES = frozenset({190, 660, 670, 680})
+_Q_M_CODES = frozenset({190, 610, 660, 670, 680})  # M61 Q: the tool number
 _Q_CYCLES = frozenset({"peck", "peck_high_speed"})
 _Q_WITHOUT_USER = "Q word with no G5, G10, G64, G73, G76, G83, M19, M66, M67, M68 or user M code that uses it"
 _P_WITHOUT_USER = ("P word with no G2 G3 G4 G10 G64 G5 G5.2 G76 G82 G86 G88 G89 or M50 M51 M52 M53 M62 M63 M64 M65 "
