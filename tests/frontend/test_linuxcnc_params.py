@@ -68,3 +68,13 @@ def test_read_only_parameters() -> None:
     assert "E0302" in codes(r)
     r = compile_text("G21\n#5221 = 1\n#<_mine> = 2\nM2\n", dialect="linuxcnc", emit="canon")
     assert r.ok
+
+
+def test_lathe_mode_parameters_follow_g7_g8_and_are_read_only() -> None:
+    # rs274 2.9: "G7 (DEBUG,...) G8 (DEBUG,...)" prints d=1 r=0, then d=0 r=1
+    got = _messages("(DEBUG,#<_lathe_diameter_mode> #<_lathe_radius_mode>)\nG7\n"
+                    "(DEBUG,#<_lathe_diameter_mode> #<_lathe_radius_mode>)\nG8\n"
+                    "(DEBUG,#<_lathe_diameter_mode> #<_lathe_radius_mode>)\n")
+    assert got == ["0.000000 1.000000", "1.000000 0.000000", "0.000000 1.000000"]
+    r = compile_text("G21\n#<_lathe_diameter_mode> = 1\nM2\n", dialect="linuxcnc", emit="canon")
+    assert "E0303" in codes(r)
