@@ -94,7 +94,7 @@ class LinuxcncExecutor:
         if target.index is None:
             name = target.name
             if name.startswith("_ini["):  # the --ini file's values (lcodes): rs274's own text
-                raise EvalError(dg.CONTROLLER_REJECTS, f"Cannot assign to read-only parameter #<{name}>",
+                raise EvalError(dg.MACRO_READ_ONLY, f"Cannot assign to read-only parameter #<{name}>",
                                 target.start, target.end)
             if name.startswith("_") and (name in ("_line", "_value", "_value_returned")
                                          or self.system.read_only_name(name)):
