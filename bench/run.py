@@ -27,6 +27,7 @@ SCRIPTS = [
     ("pipeline.py", [], ["--lines", "20000"]),
     ("report.py", [], ["--quick"]),
     ("batch.py", [], ["--quick"]),
+    ("linuxcnc.py", [], ["--moves", "10000"]),
 ]
 
 

@@ -175,6 +175,8 @@ NAMED_UNDEFINED = _define("E0352", E, "a named parameter is read before it was s
 LINUXCNC_PRINT = _define("N0353", N, "the text of a LinuxCNC (PRINT,...) comment")
 PROGRAM_NO_END = _define("E0326", E, "a LinuxCNC main program ends without M2/M30 or its closing %")
 PROGRAM_ABORT = _define("E0327", E, "the program stopped at a LinuxCNC (ABORT,...) comment")
+SUB_STYLE_MIXED = _define("E0386", E, "a LinuxCNC subroutine of one style (O100 ... M99 or o100 sub ... endsub) called "
+                          "or ended the other style's way, or an M98/M99 that LinuxCNC does not read")
 
 # --- E05xx: frames and compensation ------------------------------------------------
 TRANSFORM_WORDS = _define("E0501", E, "a frame or compensation code lacks a word it needs, or a word is out of range")

@@ -28,6 +28,7 @@ from cncc.ir import (
     FeedMode,
     FeedRate,
     Frame,
+    InterpreterReport,
     Linear,
     Message,
     ModeCommand,
@@ -133,6 +134,8 @@ def canon_lines(cmds: Iterable[Command], *, initial_frame: Frame | None = None,
             yield PREFIX + line
             continue
         match c:
+            case InterpreterReport():
+                yield from _report(c, fmt)
             case RigidTap() | NurbsFeed() | Probe() if fmt.has(_FOLDED[type(c)]):
                 skip = c.folded
                 yield from _lines(fmt, _FOLDED[type(c)], **_folded_fields(c))
@@ -145,6 +148,13 @@ def canon_lines(cmds: Iterable[Command], *, initial_frame: Frame | None = None,
                 key, fields = _other(c)
                 yield from _lines(fmt, key, **fields)
     yield from _lines(fmt, "end_of_trace")
+
+
+def _report(c: InterpreterReport, fmt: CanonFormat) -> Iterator[str]:
+    """An interpreter report, written with its [canon.comments] text (none: not written)."""
+    text = fmt.comments.get(c.key)
+    if text is not None:
+        yield PREFIX + f'COMMENT("{text}")'
 
 
 def _one_line(c: Command, fmt: CanonFormat) -> str | None:

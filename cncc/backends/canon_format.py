@@ -79,6 +79,8 @@ class CanonFormat:
             self.templates[key] = [value] if isinstance(value, str) else [str(v) for v in value]
         self.tool_table_inch = str(table.get("tool_table_units", "mm")) == "inch"
         self.feed_in_program_units = bool(table.get("feed_in_program_units", True))
+        # [canon.comments]: the interpreter's COMMENT texts, by the key of an IR InterpreterReport
+        self.comments: dict[str, str] = {str(k): str(v) for k, v in dict(table.get("comments", {})).items()}
 
     def has(self, key: str) -> bool:
         return bool(self.templates.get(key))

@@ -173,6 +173,7 @@ def _set_g92(it: Interpreter, ctx: BlockContext, shift: Vec6) -> None:
 @handler("set_origin_clear", "set_origin_suspend", "set_origin_restore")
 def _g92_x(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     st = state(it)
+    st.g92_applied = c.op == "set_origin_restore"
     if c.op == "set_origin_restore":
         _set_g92(it, ctx, st.g92_saved_mm)
         return
@@ -203,6 +204,7 @@ def _shift_named_axes(it: Interpreter, ctx: BlockContext, shifted: Callable[[int
         if w is not None:
             shift[i] = shifted(i, shift[i], it.reader.axis_value(w))
     state(it).g92_saved_mm = _vec(shift)
+    state(it).g92_applied = True
     _set_g92(it, ctx, _vec(shift))
 
 
@@ -252,6 +254,11 @@ def _g28_1(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     off = it.frame.total_offset_mm
     tool = it.frame.tool_length_mm
     machine = _vec([it.pos[i] + off[i] + (tool if i == 2 else 0.0) for i in range(6)])
+    if state(it).rotation_deg.get(it.frame.work_index):  # XY: the program point placed by the rotated system
+        from cncc.frontend.rs274_g10 import machine_xy
+
+        xy = machine_xy(it)
+        machine = (xy[0], xy[1], machine[2], machine[3], machine[4], machine[5])
     state(it).stored_mm[1 if c.op == "store_home" else 2] = machine
 
 

@@ -13,6 +13,7 @@ grbl); errors use the dialect's controller texts in ``[errors]`` when it has the
 
 from __future__ import annotations
 
+import math
 from dataclasses import replace
 from typing import TYPE_CHECKING
 
@@ -83,6 +84,7 @@ def _work_entry(it: Interpreter, ctx: BlockContext, table: int, index: int) -> N
     old = it.options.work_offsets_mm.get(index, (0.0,) * 6)
     vals = list(old)
     f = it.frame
+    mxy = machine_xy(it)
     for k, letter in enumerate(AXES):
         w = ctx.words.get(letter)
         if w is None:
@@ -91,7 +93,7 @@ def _work_entry(it: Interpreter, ctx: BlockContext, table: int, index: int) -> N
         if table == 2:
             vals[k] = v
         else:  # L20: the current position gets the value v
-            machine = f.total_offset_mm[k] + it.pos[k]
+            machine = mxy[k] if k < 2 else f.total_offset_mm[k] + it.pos[k]
             vals[k] = machine - f.local_offset_mm[k] - f.g92_offset_mm[k] - v
     if table == 20:
         _rotated_l20(it, ctx, index, old, vals)
@@ -131,6 +133,15 @@ def _rotated_l20(it: Interpreter, ctx: BlockContext, index: int, old: Vec6, vals
             q[k] = it.reader.axis_value(w)
     ox, oy = Placement((0.0, 0.0), (0.0, 0.0), theta).machine(q[0], q[1])
     vals[0], vals[1] = mx - ox - f.local_offset_mm[0], my - oy - f.local_offset_mm[1]
+def machine_xy(it: Interpreter) -> tuple[float, float]:
+    """The tool's machine XY: the program point placed by the active system's offsets and XY rotation,
+    ``R(theta) (p + g92) + g5x`` (as :class:`cncc.frontend.linuxcnc.rotation.Placement`)."""
+    f = it.frame
+    theta = math.radians(rotation_deg(it, f.work_index))
+    c, s = math.cos(theta), math.sin(theta)
+    u, v = it.pos[0] + f.g92_offset_mm[0], it.pos[1] + f.g92_offset_mm[1]
+    return (c * u - s * v + f.work_offset_mm[0] + f.local_offset_mm[0],
+            s * u + c * v + f.work_offset_mm[1] + f.local_offset_mm[1])
 
 
 def rotation_deg(it: Interpreter, index: int) -> float:

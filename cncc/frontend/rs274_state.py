@@ -23,6 +23,7 @@ class Rs274State:
     arc_absolute: bool = False  # G90.1
     inverse_time: bool = False  # G93
     g92_saved_mm: Vec6 = ZERO6  # parameters 5211-5216 (G92.2 keeps them, G92.3 restores)
+    g92_applied: bool = False  # parameter 5210: G92/G52 in force (G92.1/G92.2 clear it, G92.3 sets it)
     stored_mm: dict[int, Vec6] = field(default_factory=dict)  # G28 (1) / G30 (2) in machine coordinates
     g5_pq_mm: tuple[float, float] = (0.0, 0.0)  # P, Q of the last G5 (its end tangent)
     nurbs: list[tuple[float, float, float]] = field(default_factory=list)  # G5.2 control points x, y, weight

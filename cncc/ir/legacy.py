@@ -166,6 +166,10 @@ def _smoothing(span: Span, frame: Frame, name: str, value: object) -> m.ModeComm
     return m.SetSmoothing(span, frame, code, words)
 
 
+def _report(span: Span, frame: Frame, name: str, value: object) -> m.ModeCommand:
+    return m.InterpreterReport(span, frame, str(value))
+
+
 _BUILDERS: dict[str, Callable[[Span, Frame, str, object], m.ModeCommand]] = {
     "units": _units,
     "plane": _plane,
@@ -200,6 +204,7 @@ _BUILDERS: dict[str, Callable[[Span, Frame, str, object], m.ModeCommand]] = {
     "call_end": _call_begin,
     "output": _output,
     "smoothing": _smoothing,
+    "interpreter_report": _report,
 }
 
 

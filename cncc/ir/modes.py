@@ -332,6 +332,16 @@ class SetSmoothing:
     words: tuple[tuple[str, float], ...] = ()
 
 
+@dataclass(frozen=True, slots=True)
+class InterpreterReport:
+    """Where LinuxCNC's interpreter reports a mode change in its trace (``COMMENT("interpreter: ...")``):
+    ``key`` names the text in the dialect's ``[canon.comments]``; only the canon backend writes it."""
+
+    span: Span
+    frame: Frame
+    key: str
+
+
 ModeCommand = (
     SetUnits
     | SetPlane
@@ -364,6 +374,7 @@ ModeCommand = (
     | CallBoundary
     | SetOutput
     | SetSmoothing
+    | InterpreterReport
 )
 """Every mode command (a part of :data:`cncc.ir.Command`)."""
 
@@ -372,5 +383,6 @@ MODE_TYPES = (
     PresetG92, SetLocalOffset, SetXyRotation, SetPolar, SetScaling, SetMirror, SetRotation, WriteToolTable,
     WriteWorkTable, WriteToolData, SetCssReference, SetSpindleMode, SpindleSync, RigidTap, NurbsFeed,
     Probe, SetToolNumber, SetOverrides, SetFeedOverride, HoldAxes, CallBoundary, SetOutput, SetSmoothing,
+    InterpreterReport,
 )
 """The mode command classes, for ``isinstance``."""

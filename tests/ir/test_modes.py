@@ -64,6 +64,7 @@ LEGACY = [
     ("call_end", ("0:12", "O100"), ir.CallBoundary(SP, F, False, "0:12", "O100")),
     ("output", ("Y03", True), ir.SetOutput(SP, F, "Y03", True)),
     ("smoothing", ("G05.1", (("Q", 1.0),)), ir.SetSmoothing(SP, F, "G05.1", (("Q", 1.0),))),
+    ("interpreter_report", "cutter_comp_off", ir.InterpreterReport(SP, F, "cutter_comp_off")),
 ]
 
 

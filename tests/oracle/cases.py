@@ -5,8 +5,10 @@ from __future__ import annotations
 
 from tests.oracle.programs import TOOLS
 
-# name -> program, or (program, tool table)
-CASES: dict[str, str | tuple[str, str]] = {
+_SQ = "O<sq> sub\nG91 G1 X#1 F100\nG90\nO<sq> endsub\n"
+
+# name -> program, or (program, tool table), or (program, tool table, {subroutine file name: text})
+CASES: dict[str, str | tuple[str, str] | tuple[str, str, dict[str, str]]] = {
     "mod_negative": "G21 F100\n#1 = [7 MOD -3]\nG1 X#1\n#2 = [-7 MOD 3]\nG1 Y#2\nM2\n",
     "g0_g80": "G21\nG0 G80 X5\nM2\n",
     "g80_g1": "G21 F100\nG1 G80 X5\nM2\n",
@@ -85,6 +87,79 @@ CASES: dict[str, str | tuple[str, str]] = {
     "m73_in_sub": "G21\no100 sub\nM73\nG20 G91 F7 G64 P0.01 G19\nG0 X1\no100 endsub\no100 call\nG0 X1\nM2\n",
     "m72_rounds_f_and_s": "G21 F12.36 S123.6 M3\nM70\nF50 S500\nM72\nM2\n",
     "abort_in_sub": "G21\no100 sub\n(abort, in the sub #1)\no100 endsub\nG0 X1\no100 call [4]\nG0 X2\nM2\n",
+    # parameters read back and (DEBUG,...) text (issue 24)
+    "written_offset_next_g10": "G21\n#5222 = 1\nG10 L2 P1 Z1\nG0 X0\n(DEBUG,#5221 #5222 #5223)\nM2\n",
+    "written_offset_on_select": "G21\n#5241 = 1\nG55\nG0 X0\nM2\n",
+    "readonly_position": "G21\n#5420 = 1\nM2\n",
+    "readonly_tool": "G21\n#5400 = 1\nM2\n",
+    "readonly_named": "G21\n#<_x> = 1\nM2\n",
+    "parameter_out_of_range": "G21\n#5602 = 1\nM2\n",
+    "debug_formats": "G21\n#1=5.75\n(DEBUG,A %.1f #1 %d #1 %f #1 %.12f #1 %%d #1 %x #<nope>)\nM2\n",
+    "msg_keeps_blanks": "G21\n(MSG,  two blanks #1  )\n(DEBUG,x=#1)\nM2\n",
+    "g28_1_parameters": "G20\nG10 L2 P1 X1\nG0 X2 Y3 Z4\nG28.1\nG0 X0\nG30.1\n"
+                        "(DEBUG,#5161 #5162 #5163 #5181 #5182)\nM2\n",
+    "g92_parameters": "G21\nG0 X1\nG92 X0\n(DEBUG,#5210 #5211)\nG92.2\n(DEBUG,#5210 #5211)\nG92.3\n"
+                      "(DEBUG,#5210 #5211)\nG92.1\n(DEBUG,#5210 #5211)\nM2\n",
+    # Fanuc-style M98/M99 programs in the linuxcnc dialect, and mixing them with O-word subs (issue 18)
+    "m98_endsub_outside": "G21\no100 endsub\nM30\n",
+    "m98_fanuc_before_main": "G21\nO100\nG0 X1\nM99\nM98 P100\nM30\n",
+    "m98_fanuc_ends_endsub": "G21\nM98 P100\nM30\nO100\nG0 X1\no100 endsub\n",
+    "m98_fanuc_in_osub": "G21\no100 sub\nO200\nG0 X1\nM99\no100 endsub\nM30\n",
+    "m98_fanuc_m2_in_sub": "G21\nM98 P100\nM30\nO100\nG0 X1\nM2\nM99\n",
+    "m98_fanuc_nested": "G21\nM98 P100\nM30\nO100\nO200\nG0 X1\nM99\nM99\n",
+    "m98_fanuc_o_comment": "G21\nM98 P100\nM30\nO100 (comment)\nG0 X1\nM99\n",
+    "m98_calls_osub": "G21\nM98 P100\nM30\no100 sub\nG0 X1\no100 endsub\n",
+    "m98_l0": "G21\nM98 P100 L0\nG0 X2\nM30\nO100\nG0 X1\nM99\n",
+    "m98_l_expr": "G21\n#1=3\nM98 P100 L[#1]\nM30\nO100\nG91 G0 X1\nM99\n",
+    "m98_nested_calls": "G21\nM98 P100 L2\nM30\nO100\nG91 G0 X1\nM98 P200 L2\nM99\nO200\nG0 Y1\nM99\n",
+    "m98_no_p": "G21\nM98\nM30\nO100\nG0 X1\nM99\n",
+    "m98_p_fraction": "G21\nM98 P100.5\nM30\nO100\nG0 X1\nM99\n",
+    "m98_q": "G21\nM98 P100 Q1\nM30\nO100\nG0 X1\nM99\n",
+    "m98_recursive": "G21\nM98 P100\nM30\nO100\nM98 P100\nM99\n",
+    "m98_unknown": "G21\nM98 P999\nM30\n",
+    "m98_with_move": "G21\nG0 X1 M98 P100\nM30\nO100\nG0 Y1\nM99\n",
+    "m99_in_osub": "G21\no100 sub\nG0 X1\nM99\nM98 P100\nM30\n",
+    "m99_main": "G21\nG0 X1\nM99\n",
+    "m98_ocall_fanuc": "G21\no100 call\nM30\nO100\nG0 X1\nM99\n",
+    "m98_fanuc_duplicate": "G21\nM98 P100\nM30\nO100\nG0 X1\nM99\nO100\nG0 X2\nM99\n",
+    "m98_fanuc_no_m99": "G21\nM98 P100\nM30\nO100\nG0 X1\n",
+    "m98_f": "G21\nM98 P100 F100\nM30\nO100\nG0 Y1\nM99\n",
+    "m98_l_fraction": "G21\nM98 P100 L1.5\nM30\nO100\nG0 X1\nM99\n",
+    "m98_l_negative": "G21\nM98 P100 L-2\nM30\nO100\nG0 X1\nM99\n",
+    "m98_p_negative": "G21\nM98 P-1\nM30\n",
+    "m98_then_move": "G21\nM98 P100 G0 X1\nM30\nO100\nG0 Y1\nM99\n",
+    "m99_in_if": "G21\nM98 P100\nM30\nO100\no101 if [1]\nM99\no101 endif\nG0 X9\nM99\n",
+    "m99_in_osub2": "G21\no100 sub\nG0 X1\nM99\no100 endsub\no100 call\nM30\n",
+    "m99_main_mid": "G21\nG0 X1\nM99\nG0 X3\nM2\n",
+    "m99_main_move": "G21\nG0 X1 M99\n",
+    "m99_with_move": "G21\nN10 M98 P100\nM30\nO100\nG0 Y1\nG0 X1 M99\n",
+    "m98_q_with_g0": "G21\nG0 X1 Q1\nM2\n",
+    # named programs and subroutine files (o<name> call finds name.ngc)
+    "file_sub": ("G21\no<sq> call [3]\no<SQ> call [2]\nM2\n", "", {"sq.ngc": _SQ}),
+    "file_sub_percent": ("G21\no<sq> call [3]\nM2\n", "", {"sq.ngc": "%\n" + _SQ + "%\n"}),
+    "file_sub_with_m2": ("G21\no<sq> call [3]\nM2\n", "", {"sq.ngc": _SQ + "M2\n"}),
+    "file_without_sub": ("G21\no<sq> call [3]\nM2\n", "", {"sq.ngc": "G91 G1 X#1 F100\nM2\n"}),
+    "file_other_sub": ("G21\no<sq> call [3]\nM2\n", "", {"sq.ngc": _SQ.replace("<sq>", "<other>")}),
+    "file_sub_second_sub": ("G21\no<sq> call\nM2\n", "", {"sq.ngc": "O<sq> sub\no<in> call\nO<sq> endsub\n"
+                                                                "O<in> sub\nG0 X5\nO<in> endsub\n"}),
+    "file_sub_inner_not_global": ("G21\no<sq> call\no<in> call\nM2\n", "", {"sq.ngc": "O<sq> sub\nO<sq> endsub\n"
+                                                                              "O<in> sub\nG0 X5\nO<in> endsub\n"}),
+    "file_sub_return_value": ("G21\no<sq> call [3]\n(DEBUG,#<_value>)\nM2\n", "",
+                              {"sq.ngc": "O<sq> sub\nG0 X#1\nO<sq> return [5]\nO<sq> endsub\n"}),
+    "named_program_with_blanks": "O<my program>\nG21\nG0 X1\nM2\n",
+    "global_defined_by_assignment": "G21\n#<_g> = [#<_g> + 1]\n(DEBUG,#<_g>)\nM2\n",
+    # LinuxCNC 2.9 bug (allow.toml): the skipped outer break in the inner while ends the do loop at the continue
+    "skipped_break_ends_do_loop": ("G21\no100 do\n#1=[#1+1]\no110 while [#2 LT 3]\n#2=[#2+1]\no160 if [#2 EQ 3]\n"
+                                   "o100 continue\no160 endif\no161 if [0]\no100 break\no161 endif\no110 endwhile\n"
+                                   "G0 X#1 Y#2\no100 while [#1 LT 2]\nM2\n"),
+    "break_in_repeat": "G21\no1 repeat [3]\no2 repeat [2]\no3 if [0]\no2 break\no3 endif\nG91 G0 X1\no2 endrepeat\n"
+                       "o1 endrepeat\nM2\n",
+    # the interpreter's reports and M2 resets (tests/backends/test_linuxcnc_trace_only.py)
+    "interpreter_reports": ("G21 G17 G90 F100\nG40 G80\nG1 X1\nG54\nG91 G1 X1\nG90\nG90.1\nG91.1\nG98\nG99\n"
+                            "M3 S100\nM8\nG81 X1 Y1 Z-1 R1\nG80\nG93 G1 X3 F2\nG94 F20\nG95 F1\nG94 F20\nG1 X2\nM2\n"),
+    "g95_without_spindle_speed": "G21 F300\nG95\nG1 X1 F2\nM2\n",
+    "g95_without_feed": "G21 F300\nG95\nG1 X1\nM2\n",
+    "g95_s0_in_block": "G21 F300\nS100 M3\nG95 F1\nG1 X1\nG1 X2 S0\nM2\n",
     # lathe codes (G7/G8, G70-G72, G76): see LATHE below
 }
 

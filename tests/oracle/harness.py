@@ -4,7 +4,8 @@
 :func:`compare` runs both on the same text and reports the first disagreement:
 
 - traces: the calls in :data:`COMPARED` (motion, offsets, rotation, tool, feed, plane, units, spindle sync,
-  dwell), in order, numbers equal within :data:`TOLERANCE`;
+  dwell, operator messages), in order, numbers equal within :data:`TOLERANCE` (a message's text
+  exactly: its numbers are how ``(DEBUG,...)`` prints parameters);
 - errors: when rs274 stops with an error, cncc must fail too; when rs274's message is one of
   :data:`MESSAGES`, cncc must report that diagnostic code.  When rs274 stops, only the calls
   before its error are compared (it prints the trace up to the failing block).
@@ -32,12 +33,27 @@ COMPARED = frozenset({
     "STRAIGHT_TRAVERSE", "STRAIGHT_FEED", "ARC_FEED", "STRAIGHT_PROBE", "RIGID_TAP",
     "SET_G5X_OFFSET", "SET_G92_OFFSET", "SET_XY_ROTATION", "USE_TOOL_LENGTH_OFFSET",
     "CHANGE_TOOL", "CHANGE_TOOL_NUMBER", "SELECT_TOOL", "SET_FEED_RATE", "SELECT_PLANE", "USE_LENGTH_UNITS", "DWELL",
-    "SET_FEED_MODE", "PROGRAM_END",
+    "SET_FEED_MODE", "PROGRAM_END", "MESSAGE",
     "START_SPEED_FEED_SYNC", "STOP_SPEED_FEED_SYNCH", "DISABLE_FEED_OVERRIDE", "ENABLE_FEED_OVERRIDE",  # G33, G76
 })
+TEXT_CALLS = frozenset({"MESSAGE"})  # compared as one string, blanks included
 
 # rs274's error message (first line after "executing") -> the diagnostic code cncc reports.
-MESSAGES: dict[str, str] = {}
+MESSAGES: dict[str, str] = {
+    "Parameter is readonly": "E0303",
+    "Cannot assign to read-only parameter": "E0303",
+    "Parameter number out of range": "E0302",
+    "Found 'm98' code with no P-word": "E0316",
+    "Negative l word used": "E0316",
+    "Too many subroutine levels": "E0309",
+    "Nested subroutine definition": "E0350",
+    "Fanuc 'O....' subroutine must be called with 'M98'": "E0386",
+    "'O.... sub' subroutine must be called with 'O.... call'": "E0386",
+    "Fanuc 'O....' subroutine definition must end with 'M99'": "E0386",
+    "'O.... endsub' or 'O.... return' must follow 'O.... sub' subroutine definition": "E0386",
+    "Bug:  Reached convert_stop() from M99 as subprogram return": "E0386",
+    "Cannot feed with zero spindle speed in feed per rev mode": "E0260",
+}
 
 _CALL = re.compile(r"^\s*(?:\d+\s+)?N\S*\s+([A-Z_0-9]+)\((.*)\)\s*$")
 
@@ -66,6 +82,9 @@ def parse_trace(text: str) -> list[Call]:
         m = _CALL.match(line)
         if m is None or m.group(1) not in COMPARED:
             continue
+        if m.group(1) in TEXT_CALLS:
+            calls.append((m.group(1), (m.group(2),)))
+            continue
         args = tuple(a.strip() for a in re.split(r"[,\s]+", m.group(2)) if a.strip())
         calls.append((m.group(1), args))
     return calls
@@ -93,10 +112,19 @@ def _write_ini(tmp: str, ini: str, files: Files) -> list[str]:
     return ["-i", str(Path(tmp) / "prog.ini")]
 
 
-def run_rs274(text: str, tool_table: str = "", *, exe: Path | None = None, ini: str = "", files: Files = ()) -> Run:
+def _write_files(folder: str, files: dict[str, str] | None) -> None:
+    """Subroutine files beside the program (``name.ngc``), where both interpreters look for them."""
+    for name, body in (files or {}).items():
+        (Path(folder) / name).write_text(body)
+
+
+def run_rs274(text: str, tool_table: str = "", *, exe: Path | None = None, ini: str = "", files: Files = (),
+              local_files: dict[str, str] | None = None) -> Run:
+    """``files``: subroutine files in the INI's ``subs`` folder; ``local_files``: beside the program."""
     exe = exe or rs274_path()
     assert exe is not None, "rs274 is not installed (scripts/ensure-rs274.sh)"
     with tempfile.TemporaryDirectory(prefix="cncc-oracle-") as tmp:
+        _write_files(tmp, local_files)
         prog = Path(tmp) / "prog.ngc"
         prog.write_text(text)
         tbl = Path(tmp) / "tool.tbl"
@@ -138,12 +166,16 @@ def tool_table_mm(table: str) -> str:
     return "\n".join(rows) + "\n"
 
 
-def run_cncc(text: str, tool_table: str = "", *, ini: str = "", files: Files = ()) -> Run:
+def run_cncc(text: str, tool_table: str = "", *, ini: str = "", files: Files = (),
+             local_files: dict[str, str] | None = None) -> Run:
     from cncc.api import compile_text
     from cncc.diagnostics import Severity
 
     with tempfile.TemporaryDirectory(prefix="cncc-oracle-") as tmp:
         opts: dict[str, object] = {}
+        if local_files:
+            _write_files(tmp, local_files)
+            opts["include_dirs"] = [tmp]
         if tool_table:
             tbl = Path(tmp) / "tool.tbl"
             tbl.write_text(tool_table_mm(tool_table))
@@ -194,9 +226,10 @@ def diff_calls(want: list[Call], got: list[Call], *, prefix: bool = False) -> st
     return ""
 
 
-def compare(text: str, tool_table: str = "", *, ini: str = "", files: Files = ()) -> Verdict:
-    want = run_rs274(text, tool_table, ini=ini, files=files)
-    got = run_cncc(text, tool_table, ini=ini, files=files)
+def compare(text: str, tool_table: str = "", local_files: dict[str, str] | None = None, *, ini: str = "",
+            files: Files = ()) -> Verdict:
+    want = run_rs274(text, tool_table, ini=ini, files=files, local_files=local_files)
+    got = run_cncc(text, tool_table, ini=ini, files=files, local_files=local_files)
     if want.error == TIMED_OUT:  # no verdict from rs274: never an agreement (allow.toml may accept it)
         d = diff_calls(want.calls[:len(got.calls)], got.calls, prefix=True)  # rs274 may repeat moves for ever
         what = "ok" if got.ok else " ".join(got.codes)

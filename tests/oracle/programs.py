@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import math
 import random
+import re
 from collections.abc import Callable
 from dataclasses import dataclass
 
@@ -20,6 +21,7 @@ class Program:
     tool_table: str = ""
     ini: str = ""  # a LinuxCNC INI file both interpreters read (rs274 -i, cncc --ini)
     files: tuple[tuple[str, str], ...] = ()  # subroutine files in the folder "subs" beside the INI
+    local_files: tuple[tuple[str, str], ...] = ()  # subroutine files beside the program: (name.ngc, text)
 
 
 # In machine units, which are inches for the stand-alone rs274 (the harness scales them for cncc).
@@ -330,6 +332,163 @@ def syntax(rng: random.Random) -> Program:
     return Program(_end(out, rng))
 
 
+# ---- parameters read back (issue 24: #5211, #5221, #54xx, #<_line> ...) ----------------------------
+_OFFSET_PARAMS = [5210, 5211, 5212, 5213, 5214, 5220, *range(5221, 5231), 5241, 5242, 5243, 5250, 5261, 5262,
+                  5281, 5301, 5321, 5341, 5361, 5381, 5390, 5161, 5162, 5163, 5181, 5182, 5183]
+_POSITION_PARAMS = [*range(5420, 5429), 5400, 5403, 5410]
+# (#<_abs_z> left out: after G43 and a G20/G21 change rs274 2.9 adds the tool length in the old units)
+_NAMED_PARAMS = ["_line", "_motion_mode", "_plane", "_ccomp", "_metric", "_imperial", "_absolute", "_incremental",
+                 "_inverse_time", "_units_per_minute", "_units_per_rev", "_coord_system", "_tool_offset",
+                 "_retract_r_plane", "_retract_old_z", "_spindle_rpm_mode", "_spindle_css_mode",
+                 "_ijk_absolute_mode", "_spindle_on", "_spindle_cw", "_mist", "_flood", "_feed", "_rpm", "_x", "_y",
+                 "_z", "_a", "_b", "_c", "_u", "_abs_x", "_abs_y", "_abs_a", "_value",
+                 "_value_returned", "_call_level", "_vmajor", "_vminor", "_task"]
+
+
+def _debug_params(rng: random.Random, tool_loaded: bool) -> str:
+    """A DEBUG line printing a few parameters.  The tool parameters only once a tool is loaded:
+    before the first M6 the stand-alone rs274 2.9 reports whatever tool another rs274 process running at
+    the same time has (its tool data is shared between processes)."""
+    position = _POSITION_PARAMS if tool_loaded else _POSITION_PARAMS[:9]
+    picks = [f"#{n}" for n in rng.sample(_OFFSET_PARAMS, 3)] + [f"#{n}" for n in rng.sample(position, 2)]
+    picks += [f"#<{n}>" for n in rng.sample(_NAMED_PARAMS + (["_current_tool", "_selected_tool"] if tool_loaded
+                                                             else []), 3)]
+    rng.shuffle(picks)
+    return "(DEBUG," + " ".join(f"{p[1:]}={p}" for p in picks) + ")"
+
+
+def _parameter_step(rng: random.Random, k: float) -> list[str]:
+    c = rng.random()
+    if c < 0.2:
+        axes = " ".join(f"{ax}{num(rng.uniform(-40, 40) * k)}" for ax in rng.sample("XYZA", rng.randint(1, 3)))
+        lw = rng.choice(["L2", "L2", "L20"])
+        rot = f" R{num(rng.uniform(-90, 90))}" if lw == "L2" and rng.random() < 0.2 else ""
+        return [f"G10 {lw} P{rng.randint(0, 9)} {axes}{rot}"]
+    if c < 0.4:
+        g = rng.choice(["G92", "G92", "G52", "G92.1", "G92.2", "G92.3"])
+        if g in ("G92", "G52"):
+            g += " " + " ".join(f"{ax}{num(rng.uniform(-30, 30) * k)}" for ax in rng.sample("XYZ", rng.randint(1, 3)))
+        return [g]
+    if c < 0.5:
+        return [rng.choice(["G28.1", "G30.1", *_SYSTEMS])]
+    if c < 0.55:
+        t = rng.randint(1, 4)
+        return [f"T{t} M6", rng.choice(["G43", "G49"])]  # (G43.1 and M6: the tool_length feature)
+    if c < 0.7:
+        return [rng.choice(["G20", "G21", "G90", "G91", "G17", "G18", "G19", "G90.1", "G91.1", "G93 G1 X1 F2", "G94",
+                            "G95", "M3 S200", "M4 S300", "M5", "M7", "M8", "M9", "G98", "G99", "G96 S100 D200",
+                            "G97", "G80"])]
+    if c < 0.75:
+        n = rng.choice(_OFFSET_PARAMS)
+        return [f"#{n} = {num(rng.uniform(-5, 5))}", f"(DEBUG,w{n}=#{n})"]
+    return _moves(rng, k, 1)
+
+
+def parameters(rng: random.Random) -> Program:
+    u, k = _units(rng)
+    out = [f"{u} G90 G17 F{num(300 * k)}"]
+    for _ in range(rng.randint(2, 6)):
+        out += _parameter_step(rng, k)
+        if rng.random() < 0.7:
+            out.append(_debug_params(rng, any(" M6" in ln for ln in out)))
+    out.append("G90 G94 G17 F100")
+    if rng.random() < 0.06:  # writing a read-only parameter is an error
+        out.append(rng.choice(["#5420 = 1", "#5400 = 2", "#<_x> = 1", "#<_line> = 3", "#5602 = 1"]))
+    out.append(_debug_params(rng, any(" M6" in ln for ln in out)))
+    if any(ln.startswith(("G92 ", "G52 ")) for ln in out):  # G92 under an XY rotation: the rotation feature's
+        out = [re.sub(r" R-?[\d.]+$", "", ln) if ln.startswith("G10 ") else ln for ln in out]
+    return Program(_end(out, rng), TOOLS)
+
+
+# ---- (DEBUG,...) / (MSG,...) text ---------------------------------------------------------------
+_FORMAT_WORDS = ["%d", "%f", "%lf", "%.0f", "%.1f", "%.3f", "%.9f", "%.12f", "%.f", "%%", "%x", "%", "%.3d", "%s",
+                 "%5.1f"]
+_VALUES = [2.5, -2.5, 0.5, -0.4, 1.0e-7, 123456.789, 7, -3.25, 0.125, 1.0 / 3]
+
+
+def messages(rng: random.Random) -> Program:
+    out = ["G21"]
+    for i in range(1, 4):
+        out.append(f"#{i} = {num(rng.choice(_VALUES)) if rng.random() < 0.7 else num(rng.uniform(-99, 99))}")
+    out.append(f"#<v> = {num(rng.choice(_VALUES))}")
+    for _ in range(rng.randint(1, 4)):  # a "#" at the end of the text reads past it in rs274 2.9: not tested
+        pieces = []
+        for _ in range(rng.randint(1, 6)):
+            pieces.append(rng.choice([*_FORMAT_WORDS, "#1", "#2", "#3", "#<v>", "#<nope>", "##1", "# x", "x=#1", "ab",
+                                      "#<_line>", "#1#2", "%d#1"]))
+        sep = rng.choice([" ", "  ", ""])
+        lead = rng.choice(["", " ", "   "])
+        tail = rng.choice(["", " ", "  "])
+        kind = rng.choice(["DEBUG", "DEBUG", "debug", "MSG"])
+        out.append(f"({kind},{lead}{sep.join(pieces)}{tail})")
+        if rng.random() < 0.3:
+            out.append(f"G0 X{num(rng.uniform(-9, 9))}")
+    return Program(_end(out, rng))
+
+
+# ---- Fanuc-style M98/M99 programs ------------------------------------------------------------------
+def _m98_call(rng: random.Random, labels: list[int]) -> str:
+    call = f"M98 P{rng.choice(labels)}"
+    if rng.random() < 0.6:
+        call += f" L{rng.choice(['1', '2', '3', '[#1]', '[#9 + 1]'])}"  # (L0: rs274 2.9 counts a call level)
+    if rng.random() < 0.04:  # errors: M98 not first, a fraction, a stray Q
+        call = rng.choice([f"G0 X1 {call}", call + ".5", call + " Q1"])
+    return call
+
+
+def m98_subs(rng: random.Random) -> Program:
+    labels = rng.sample([100, 200, 300, 1234], rng.randint(1, 3))
+    out = ["G21 G90 F500", f"#1 = {rng.randint(1, 3)}", "#9 = 1"]
+    for _ in range(rng.randint(1, 4)):
+        out.append(_m98_call(rng, labels))
+        if rng.random() < 0.6:
+            out.append("(DEBUG,main #1 #2 #3 #9 #<_call_level>)")
+        if rng.random() < 0.3:
+            out.append(f"G0 X{num(rng.uniform(-9, 9))}")
+    out.append(rng.choice(["M30", "M2", "M99"]))
+    for i, label in enumerate(labels):
+        out.append(f"O{label}")
+        out += [f"#2 = [#2 + {rng.randint(1, 3)}]", f"G91 G1 X{num(rng.uniform(-5, 5))} Y#1", "G90"]
+        if rng.random() < 0.4:
+            out.append(f"(DEBUG,in{label} #1 #2 #<_call_level>)")
+        if i + 1 < len(labels) and rng.random() < 0.4:
+            out.append(f"M98 P{labels[i + 1]}")  # nested, only downwards: no endless recursion
+        if rng.random() < 0.3:
+            out += [f"o{label + 1} if [#2 GT 4]", "M99", f"o{label + 1} endif"]
+        out.append("#3 = [#3 + 1]")
+        out.append("M99")
+    return Program("\n".join(out) + "\n")
+
+
+# ---- named subroutines in files (o<name> call finds name.ngc) ----------------------------------------
+def file_subs(rng: random.Random) -> Program:
+    names = rng.sample(["edge", "Hole", "pocket", "sq"], rng.randint(1, 3))
+    files = []
+    for name in names:
+        body = [f"O<{name}> sub", "#<_count> = [#<_count> + 1]", f"G91 G1 X[#1 * {rng.randint(1, 3)}] Y#2 F100",
+                "G90", f"(DEBUG,{name.lower()} #1 #2 #<_count> #<_call_level>)"]
+        if rng.random() < 0.4:
+            body.append(f"O<{name}> return [#1 + #2]")
+        body.append(f"O<{name}> endsub")
+        if rng.random() < 0.3:
+            body = ["%", *body, "%"]
+        elif rng.random() < 0.3:
+            body.append("M2")
+        files.append((f"{name.lower()}.ngc", "\n".join(body) + "\n"))
+    out = ["G21 G90", "#<_count> = 0"]
+    if rng.random() < 0.3:
+        out.insert(0, rng.choice(["O<Main>", "O<main program>", "O100"]))
+    for _ in range(rng.randint(1, 4)):
+        name = rng.choice(names)
+        out.append(f"o<{rng.choice([name, name.upper(), name.lower()])}> call [{rng.randint(-3, 3)}] "
+                   f"[{num(rng.uniform(-2, 2))}]")
+        if rng.random() < 0.5:
+            out.append("(DEBUG,main #<_value> #<_value_returned> #<_count>)")
+    if rng.random() < 0.05:
+        out.append("o<missing> call")
+    return Program(_end(out, rng), "", local_files=tuple(files))
+
+
 # ---- lathe codes (G7/G8, G70-G72, G76) ----------------------------------------------------------
 def lathe_modes(rng: random.Random) -> Program:
     """G7/G8 with X words in moves, arcs (I/K stay radii), G91, G92/G10 and read-back of #<_x>."""
@@ -470,7 +629,9 @@ FEATURES: dict[str, Callable[[random.Random], Program]] = {
     "lines": lines, "arcs_ijk": arcs_ijk, "arcs_r": arcs_r, "helix_turns": helix_turns,
     "work_offsets": work_offsets, "rotation": rotation, "g92_g52": g92_offsets, "tool_length": tool_length,
     "cycles": cycles, "cutter_comp": cutter_comp, "owords": owords, "path_feed": path_feed, "syntax": syntax,
-    "lathe_modes": lathe_modes, "lathe_roughing": lathe_roughing, "threading": threading,
+    "parameters": parameters, "messages": messages, "m98_subs": m98_subs,
+    "file_subs": file_subs,
+    "lathe_modes": lathe_modes, "threading": threading,  # lathe_roughing: G70-G72 not implemented (g7x.py)
 }
 FEATURES["arc_tolerance"] = arc_tolerance
 

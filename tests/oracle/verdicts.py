@@ -45,7 +45,7 @@ def tally(feature: str, count: int, seed: int = 0) -> Tally:
     allow = allowances()
     t = Tally(feature)
     for prog in generate(feature, count, seed):
-        v = compare(prog.text, prog.tool_table, ini=prog.ini, files=prog.files)
+        v = compare(prog.text, prog.tool_table, dict(prog.local_files), ini=prog.ini, files=prog.files)
         t.programs += 1
         if v.agree:
             t.agree += 1

@@ -102,17 +102,29 @@ def _loop_word(ex: LinuxcncExecutor, fr: Frame, i: int, ow: OWord, args: list[fl
         fr.pc = lp.head
         return
     if kw == "repeat":
-        left = fr.repeats.get(i)
-        if left is None:
-            left = round(args[0]) if args else 0
-        if left <= 0:
-            fr.repeats.pop(i, None)
-            fr.pc = lp.end + 1
-        else:
-            fr.repeats[i] = left - 1
+        _repeat(ex, fr, i, ow, args, lp.end)
         return
     if kw == "endrepeat":
         fr.pc = lp.head
+
+
+def _repeat(ex: LinuxcncExecutor, fr: Frame, i: int, ow: OWord, args: list[float], end: int) -> None:
+    """``oN repeat [n]``: the count left is kept per frame; 2.9 has no break/continue for repeat."""
+    fx = fr.index
+    jump = fx.repeat_jumps.get(i)
+    if jump is not None:
+        ex.fail(dg.OWORD_STRUCTURE, fx.span(fx.blocks[jump]), f"no matching while/do label: 'o{ow.label} "
+                f"{fx.owords[jump].keyword}' (o{ow.label} is a repeat loop: break and continue are for while "
+                "and do)")
+        return
+    left = fr.repeats.get(i)
+    if left is None:
+        left = round(args[0]) if args else 0
+    if left <= 0:
+        fr.repeats.pop(i, None)
+        fr.pc = end + 1
+    else:
+        fr.repeats[i] = left - 1
 
 
 def _call(ex: LinuxcncExecutor, fr: Frame, ow: OWord, args: list[float], span: Span) -> None:
@@ -120,6 +132,9 @@ def _call(ex: LinuxcncExecutor, fr: Frame, ow: OWord, args: list[float], span: S
 
     index = fr.index
     found = index.subs.get(ow.label)
+    if found is None and ow.label in index.programs:
+        ex.fail(dg.SUB_STYLE_MIXED, span, f"O{ow.label} is a program number (O{ow.label} ... M99): call it with M98")
+        return
     if found is None:
         name = ow.label.strip("<>")
         loaded = ex.load_sub(name)
@@ -148,6 +163,35 @@ def _return(ex: LinuxcncExecutor, fr: Frame, ow: OWord, args: list[float], span:
     ex.params.globals_named["_value_returned"] = 1.0 if args else 0.0
 
 
+def m98_block(ex: LinuxcncExecutor, fr: Frame, block: Block, words: tuple[Word, ...]) -> tuple[Word, ...]:
+    """A block with M98 or M99, as rs274 2.9 reads it; the words left to run as an ordinary block.
+
+    M98 is read only as the block's first word (after N): the call, every other word of the block
+    ignored; anywhere else it is an unknown M code.  M99 alone returns from an M98 program; in the
+    main program it ends the program as M2 does (the rest of the block runs)."""
+    lead = next((w for w in words if w.letter != "N"), None)
+    span = fr.index.span(block)
+    for w in words:
+        if w.letter != "M" or round(w.value) not in (98, 99):
+            continue
+        if round(w.value) == 98:
+            if w is not lead:
+                ex.fail(dg.UNKNOWN_M, ex.it.word_span(w), "M98 must be the first word of its block (LinuxCNC reads "
+                        "it nowhere else)")
+                return ()
+            if ex.reporter.allowed(span, words):  # its other words are not run, but a stray Q is an error
+                run_m98(ex, fr, block, words, w)
+            return ()
+        if fr.caller is None:  # M99 in the main program: the end of the program
+            return tuple(Word("M", 2.0, False, x.start, x.end) if x is w else x for x in words)
+        if any(x.letter not in "NM" or (x is not w and x.letter == "M") for x in words):
+            ex.fail(dg.SUB_STYLE_MIXED, span, "M99 must stand alone in its block to return from a subprogram")
+            return ()
+        run_m98(ex, fr, block, words, w)
+        return ()
+    return words
+
+
 def run_m98(ex: LinuxcncExecutor, fr: Frame, block: Block, words: tuple[Word, ...], m: Word) -> None:
     """Fanuc-style M98 P<n> L<count> (call program O<n> of this file) and M99 (return)."""
     from cncc.frontend.linuxcnc.frames import Frame
@@ -156,6 +200,10 @@ def run_m98(ex: LinuxcncExecutor, fr: Frame, block: Block, words: tuple[Word, ..
     if round(m.value) == 99:
         if fr.caller is None:
             ex.it.ended = True  # M99 in the main program ends it (cncc does not restart it)
+            return
+        if not fr.m98_count:
+            ex.fail(dg.SUB_STYLE_MIXED, span, f"M99 cannot end o{fr.name} sub: it ends with o{fr.name} endsub or "
+                    "return")
             return
         if fr.m98_count > 1:
             fr.m98_count -= 1
@@ -168,8 +216,19 @@ def run_m98(ex: LinuxcncExecutor, fr: Frame, block: Block, words: tuple[Word, ..
     if pw is None:
         ex.fail(dg.MACRO_BAD_CALL, span, "M98 needs P, the program number")
         return
+    for w in (pw, lw):
+        if w is not None and w.value != int(w.value):
+            ex.fail(dg.MACRO_BAD_CALL, ex.it.word_span(w), f"M98 {w.letter} must be a whole number")
+            return
+    if lw is not None and lw.value < 0:
+        ex.fail(dg.MACRO_BAD_CALL, ex.it.word_span(lw), "M98 with a negative L")
+        return
     label = str(round(pw.value))
     start = fr.index.programs.get(label)
+    if start is None and label in fr.index.subs:
+        ex.fail(dg.SUB_STYLE_MIXED, span, f"M98 P{label}: o{label} is an O-word subroutine: call it with o{label} "
+                "call")
+        return
     if start is None:
         ex.fail(dg.OWORD_NO_SUB, span, f"M98 P{label}: there is no O{label} in this file", label)
         return

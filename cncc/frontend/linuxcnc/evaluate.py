@@ -38,15 +38,30 @@ class Parameters:
     globals_named: dict[str, float] = field(default_factory=dict)
     scopes: list[Scope] = field(default_factory=lambda: [Scope()])
     system: Callable[[str], float | None] = lambda name: None  # #<_x> ... from the interpreter
+    system_number: Callable[[int], float | None] = lambda n: None  # #5161 ... #5428 from the interpreter
+    system_write: Callable[[int, float], bool] = lambda n, v: False  # ... and into its tables
+    # a system parameter the program wrote: (its value, the interpreter's value then)
+    system_written: dict[int, tuple[float, float]] = field(default_factory=dict)
 
     def read_number(self, n: int) -> float:
         if 1 <= n <= 30:
             return self.scopes[-1].numbered.get(n, 0.0)
+        if n > 5160:
+            got = self.system_number(n)
+            if got is not None:
+                user = self.system_written.get(n)
+                return user[0] if user is not None and user[1] == got else got
         return self.globals_numbered.get(n, 0.0)
 
     def write_number(self, n: int, value: float) -> None:
         if 1 <= n <= 30:
             self.scopes[-1].numbered[n] = value
+            return
+        if n > 5160 and self.system_write(n, value):
+            return
+        got = self.system_number(n) if n > 5160 else None
+        if got is not None:
+            self.system_written[n] = (value, got)
         else:
             self.globals_numbered[n] = value
 

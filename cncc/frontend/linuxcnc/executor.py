@@ -29,9 +29,11 @@ from cncc.frontend.linuxcnc.flow import FlowIndex
 from cncc.frontend.linuxcnc.frames import Frame as Frame  # re-exported
 from cncc.frontend.linuxcnc.g7x import cycle_word, run_g7x
 from cncc.frontend.linuxcnc.lathe import block_words, diameter_mode
+from cncc.frontend.linuxcnc.messages import format_message
+from cncc.frontend.linuxcnc.params import SystemParameters, read_only_number
 from cncc.frontend.linuxcnc.report import Before, Reporter
 from cncc.frontend.parser import Parser
-from cncc.frontend.syntax import Assign, Block, CommentItem, Word
+from cncc.frontend.syntax import Assign, Block, CommentItem, Var, Word
 from cncc.ir import Command, Message
 from cncc.source import SourceFile, Span
 
@@ -47,13 +49,15 @@ class LinuxcncExecutor:
         self.sink = ControllerSink(sink, ControllerTexts(dialect.raw.get("errors", {})))  # the run's (see run)
         self.it = it
         self.parser = parser
-        self.params = Parameters(system=self._system)
+        self.system = SystemParameters(it, lambda: len(self.stack) - 1)
+        self.params = Parameters(system=self._system, system_number=self.system.number,
+                                 system_write=self.system.write)
         self.ev = Evaluator(self.params)
         self.include_dirs = include_dirs
         self.max_steps = max_steps
         self.max_depth = int(dialect.option("max_call_depth", 10))
         self.stop_on_error = bool(dialect.option("stop_on_error", True))
-        self.comments = {str(k): str(v) for k, v in dialect.raw.get("canon_comments", {}).items()}
+        self.comments = {str(k): str(v) for k, v in dialect.raw.get("canon", {}).get("comments", {}).items()}
         if not dialect.option("interpreter_comments", True):
             self.comments = {}
         self.reporter = Reporter(it, self.comments)
@@ -79,21 +83,29 @@ class LinuxcncExecutor:
     def _system(self, name: str) -> float | None:
         if name.startswith("_ini["):
             return self.ini_parameters.get(name)
-        it = self.it
-        k = it.frame.units.mm_per_unit
-        axes = {"_x": 0, "_y": 1, "_z": 2, "_a": 3, "_b": 4, "_c": 5}
-        if name in axes:
-            i = axes[name]
-            return it.pos[i] / k if i < 3 else it.pos[i]
-        values = {
-            "_metric": float(k == 1.0), "_imperial": float(k != 1.0),
-            "_absolute": float(not it.modal.incremental), "_incremental": float(it.modal.incremental),
-            "_feed": it.modal.feed or 0.0, "_rpm": it.modal.spindle_rpm,
-            "_current_tool": float(it.modal.tool_loaded), "_selected_tool": float(it.modal.tool_selected),
-            "_value": 0.0, "_value_returned": 0.0, "_line": float(self.line),
-            "_lathe_diameter_mode": float(diameter_mode(it)), "_lathe_radius_mode": float(not diameter_mode(it)),
-        }
-        return values.get(name)
+        if name == "_line":
+            return float(self.line)
+        if name in ("_value", "_value_returned"):
+            return 0.0  # until a subroutine returns
+        return self.system.name(name)
+
+    def _assign(self, target: Var, value: float) -> None:
+        """``#n = value`` / ``#<name> = value``; LinuxCNC's read-only parameters refuse it."""
+        if target.index is None:
+            name = target.name
+            if name.startswith("_ini["):  # the --ini file's values (lcodes): rs274's own text
+                raise EvalError(dg.MACRO_READ_ONLY, f"Cannot assign to read-only parameter #<{name}>",
+                                target.start, target.end)
+            if name.startswith("_") and (name in ("_line", "_value", "_value_returned")
+                                         or self.system.read_only_name(name)):
+                raise EvalError(dg.MACRO_READ_ONLY, f"#<{name}> is a read-only named parameter", target.start,
+                                target.end, name)
+            self.params.write_name(name, value)
+            return
+        n = self.ev.var_number(target)
+        if read_only_number(n):
+            raise EvalError(dg.MACRO_READ_ONLY, f"#{n} is a read-only parameter", target.start, target.end)
+        self.params.write_number(n, value)
 
     # ---- running
     def run(self, src: SourceFile) -> Iterator[Command]:
@@ -124,6 +136,7 @@ class LinuxcncExecutor:
             if fr.auto_restore and len(self.stack) < depth and self.stack and not self.stopped and not self.it.ended:
                 self._restore_modal(fr, self.stack[-1].call_span or fr.call_span)
             if self.out:
+                self.system.observe(self.out)
                 yield from self.out
                 self.out = []
 
@@ -149,6 +162,11 @@ class LinuxcncExecutor:
                 self.fail(dg.PROGRAM_NO_END, Span(last.source_id, last.end, last.end), "File ended with no percent "
                           "sign" + ("" if self.opened else " or program end"))
         else:
+            if fr.m98_count:  # an O100 program called by M98 that runs to the end of the file: no M99
+                last = fr.index.span(fr.index.blocks[-1])
+                self.fail(dg.PROGRAM_NO_END, Span(last.source_id, last.end, last.end),
+                          f"O{fr.name} called by M98 runs to the end of the file without M99: File ended with no "
+                          "percent sign or program end")
             self.stack.pop()
 
     def _step(self, fr: Frame) -> None:
@@ -173,23 +191,16 @@ class LinuxcncExecutor:
             self.stopped = True
 
     def _block(self, fr: Frame, block: Block) -> None:
-        words = tuple(self._value_word(w) for w in block.words)
+        self._define_names(block)
+        words = self._drop_g80(tuple(self._value_word(w) for w in block.words))
+        sets = [(s.target, self.ev.number(s.expr)) for s in block.statements if isinstance(s, Assign)]
+        for target, value in sets:
+            self._assign(target, value)
         if self.fast and self.capture is None and not diameter_mode(self.it):  # G7x profiles, G7: the full path
             plain = run_plain(self.it, block, words)
             if plain is not None:
                 self.out.extend(plain)
                 return
-        words = self._drop_g80(words)
-        sets = [(s.target, self.ev.number(s.expr)) for s in block.statements if isinstance(s, Assign)]
-        for target, value in sets:
-            if target.index is None and target.name.startswith("_ini["):
-                self.fail(dg.CONTROLLER_REJECTS, fr.index.span(block), f"Cannot assign to read-only parameter "
-                          f"#<{target.name}>")
-                return
-            if target.index is None:
-                self.params.write_name(target.name, value)
-            else:
-                self.params.write_number(self.ev.var_number(target), value)
         words = block_words(self.it, words, capture=self.capture is not None)  # G7: X is a diameter
         if self.capture is not None:  # the profile of a G70-G72: its moves are collected, not run
             self.capture.append((fr.index.span(block), words))
@@ -209,13 +220,20 @@ class LinuxcncExecutor:
                       f"found m{round(m98[0].value)}")
             return
         if m98:
-            from cncc.frontend.linuxcnc.control import run_m98
+            from cncc.frontend.linuxcnc.control import m98_block
 
-            rest = tuple(w for w in words if w not in m98 and w.letter not in "PL")
-            self._run_words(block, rest, comments)
-            run_m98(self, fr, block, words, m98[0])
-            return
+            words = m98_block(self, fr, block, words)
+            if not words:
+                self._run_words(block, (), comments)
+                return
         self._run_words(block, words, comments)
+
+    def _define_names(self, block: Block) -> None:
+        """rs274 2.9 defines a named parameter (as 0) when it reads its assignment, so the line's own
+        reads of it find 0."""
+        for st in block.statements:
+            if isinstance(st, Assign) and st.target.index is None and self.params.lookup(st.target.name) is None:
+                self.params.write_name(st.target.name, 0.0)
 
     def _run_words(self, block: Block, words: tuple[Word, ...], comments: tuple[CommentItem, ...]) -> None:
         if not words and not comments:
@@ -287,20 +305,26 @@ class LinuxcncExecutor:
             if m is None:
                 keep.append(c)
                 continue
-            kind, text = m.group(1).upper(), m.group(2).strip()
+            kind, text = m.group(1).upper(), m.group(2)  # the text after the comma as written, blanks too
             span = Span(self.it.source_id, c.start, c.end)
             if kind in ("DEBUG", "PRINT"):
-                text = self._substitute(text, c.start)
+                text = format_message(text, self._read_number, self.params.lookup)
             if kind == "ABORT":  # rs274 stops with the text (parameters substituted) as its error
                 self.fail(dg.PROGRAM_ABORT, span, self._substitute(m.group(2), c.start))
             elif kind == "PRINT":
-                self.sink.emit(dg.LINUXCNC_PRINT, span, text)
+                self.sink.emit(dg.LINUXCNC_PRINT, span, text.strip())
             else:
                 self.out.append(Message(span, self.it.frame, text))
         return tuple(keep)
 
     def _substitute(self, text: str, pos: int) -> str:
         return _PARAM_IN_TEXT.sub(lambda mm: self._format_param(mm.group(0), pos), text)
+
+    def _read_number(self, n: int) -> float:
+        from cncc.frontend.syntax import Num
+
+        value = self.ev.read(Var(Num(float(n), False, 0, 0), 0, 0))
+        return 0.0 if value is None else value  # LinuxCNC's reads are never vacant
 
     def _format_param(self, text: str, pos: int) -> str:
         from cncc.frontend.linuxcnc.builder import param_name

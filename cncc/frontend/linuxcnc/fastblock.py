@@ -20,7 +20,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 from cncc.frontend.syntax import Block, Word
-from cncc.ir import Command, CompSide, FeedRate, Linear, Rapid
+from cncc.ir import Command, CompSide, FeedRate, Linear, Rapid, Vec6
 from cncc.ir.frame import NOT_HELD
 from cncc.source import Span
 
@@ -45,13 +45,9 @@ def plain_state(it: Interpreter) -> bool:
     return not st.inverse_time and not any(st.rotation_deg.values())
 
 
-def run_plain(it: Interpreter, block: Block, words: tuple[Word, ...]) -> list[Command] | None:  # noqa: C901 - split by its owner (lparams) after the checkpoint
-    """The commands of ``block`` (its ``words`` evaluated) when it is a plain move in a plain state,
-    else None (nothing changed)."""
-    if block.statements or block.comments:
-        return None
-    motion = it.modal.motion
-    axes: list[tuple[int, float]] = []
+def _plain_words(motion: str, words: tuple[Word, ...]) -> tuple[str, list[int], Word | None] | None:
+    """The block's motion, named axes and F word when it has only one G0/G1, X/Y/Z and F (N aside)."""
+    axes: list[int] = []
     feed_word = None
     g_seen = False
     for w in words:
@@ -59,41 +55,39 @@ def run_plain(it: Interpreter, block: Block, words: tuple[Word, ...]) -> list[Co
         if w.expr is not None:
             return None
         if letter in _AXES:
-            axes.append((_AXES[letter], w.value))
+            axes.append(_AXES[letter])
         elif letter == "G":
             got = _MOTION.get(w.value)
             if got is None or g_seen:  # another G code, or a second G0/G1
                 return None
             motion, g_seen = got, True
-        elif letter == "F":
-            if feed_word is not None:
-                return None
+        elif letter == "F" and feed_word is None:
             feed_word = w
         elif letter != "N":
             return None
-    if not axes or motion not in ("rapid", "linear") or len({a for a, _ in axes}) != len(axes) or not plain_state(it):
+    if not axes or motion not in ("rapid", "linear") or len(set(axes)) != len(axes):  # G38.x etc.: the full path
         return None
+    return motion, axes, feed_word
+
+
+def run_plain(it: Interpreter, block: Block, words: tuple[Word, ...]) -> list[Command] | None:
+    """The commands of ``block`` (its ``words`` evaluated) when it is a plain move in a plain state,
+    else None (nothing changed)."""
+    if block.statements or block.comments:
+        return None
+    got = _plain_words(it.modal.motion, words)
+    if got is None or not plain_state(it):
+        return None
+    motion, axes, feed_word = got
     modal = it.modal
-    k = it.frame.units.mm_per_unit
     feed = modal.feed if feed_word is None else feed_word.value
-    if motion == "linear" and (feed is None or feed <= 0.0):
-        return None  # no feed or F0: the interpreter reports it
-    if feed_word is not None and feed_word.value < 0:
-        return None
+    if (motion == "linear" and (feed is None or feed <= 0.0)) or (feed_word is not None and feed_word.value < 0):
+        return None  # no feed, F0 or a negative F: the interpreter reports it
     if it.frame.held_axes != NOT_HELD and not modal.incremental:
-        it.release_axes([a for a, _ in axes])  # as ops._release_named: named absolutely, no longer held
-    rd = it.reader
-    p = it.pos
-    q = list(p)
-    inc = modal.incremental
-    for w in words:
-        axis = _AXES.get(w.letter)
-        if axis is not None:
-            v = rd.axis_value(w)
-            q[axis] = q[axis] + v if inc else v
-    end = (q[0], q[1], q[2], q[3], q[4], q[5])
+        it.release_axes(axes)  # as ops._release_named: named absolutely, no longer held
+    end = _end(it, words)
     out: list[Command] = []
-    frame = it.frame
+    frame, k, p = it.frame, it.frame.units.mm_per_unit, it.pos
     if feed_word is not None:
         out.append(FeedRate(Span(it.source_id, feed_word.start, feed_word.end), frame, feed_word.value * k, False))
     span = Span(it.source_id, block.start, block.end)
@@ -104,9 +98,20 @@ def run_plain(it: Interpreter, block: Block, words: tuple[Word, ...]) -> list[Co
         out.append(Rapid(span, frame, p, end, modal.path))
     if motion != modal.motion or feed_word is not None:
         it.modal = modal.with_(motion=motion, feed=feed)
-        if motion != modal.motion:
-            code = it.dialect.code("G", 0 if motion == "rapid" else 10)
-            if code is not None:
-                it.group_codes["motion"] = code.name
+        code = it.dialect.code("G", 0 if motion == "rapid" else 10) if motion != modal.motion else None
+        if code is not None:
+            it.group_codes["motion"] = code.name
     it.pos = end
     return out
+
+
+def _end(it: Interpreter, words: tuple[Word, ...]) -> Vec6:
+    """The block's end point: its axis words, absolute or incremental, in mm."""
+    rd, inc = it.reader, it.modal.incremental
+    q = list(it.pos)
+    for w in words:
+        axis = _AXES.get(w.letter)
+        if axis is not None:
+            v = rd.axis_value(w)
+            q[axis] = q[axis] + v if inc else v
+    return (q[0], q[1], q[2], q[3], q[4], q[5])

@@ -37,6 +37,7 @@ class FlowIndex:
     loops: list[Loop] = field(default_factory=list)
     loop_at: dict[int, Loop] = field(default_factory=dict)  # head and end lines -> loop
     programs: dict[str, int] = field(default_factory=dict)  # bare O<n> (M98 targets) -> line
+    repeat_jumps: dict[int, int] = field(default_factory=dict)  # repeat line -> a break/continue of its label inside
 
     def span(self, b: Block) -> Span:
         return Span(self.src.source_id, b.start, b.end)
@@ -64,16 +65,22 @@ class _Matcher:
         self.open: list[tuple[str, str, int]] = []  # (label, keyword, line)
         self.branch_lines: dict[int, list[int]] = {}  # if line -> its branch lines
 
-    def error(self, line: int, message: str) -> None:
-        self.sink.emit(dg.OWORD_STRUCTURE, self.fx.span(self.fx.blocks[line]), message)
+    def error(self, line: int, message: str, code: str = dg.OWORD_STRUCTURE) -> None:
+        self.sink.emit(code, self.fx.span(self.fx.blocks[line]), message)
         self.ok = False
+
+    def _program(self, i: int, label: str) -> None:
+        """A Fanuc-style program number ``O100`` (an M98 target up to its M99); the first one counts."""
+        if any(k == "sub" for _, k, _ in self.open):
+            self.error(i, "Nested subroutine definition")
+        self.fx.programs.setdefault(label, i)
 
     def run(self) -> bool:
         for i, b in enumerate(self.fx.blocks):
             ow = oword_of(b.statements)
             if ow is None:
                 if b.words and b.words[0].letter == "O":  # a plain "O100" line (parsed as a word)
-                    self.fx.programs[str(round(b.words[0].value))] = i
+                    self._program(i, str(round(b.words[0].value)))
                 continue
             self.fx.owords[i] = ow
             if ow.label_expr is None:  # a computed call matches nothing
@@ -91,7 +98,11 @@ class _Matcher:
     def line(self, i: int, ow: OWord) -> None:
         kw, fx = ow.keyword, self.fx
         if kw == "":
-            fx.programs[ow.label] = i
+            self._program(i, ow.label)
+        elif kw in ("endsub", "return") and ow.label in fx.programs and \
+                not any(lb == ow.label and k == "sub" for lb, k, _ in self.open):
+            self.error(i, f"O{ow.label} ... must end with M99, not o{ow.label} {kw} (it is called by M98)",
+                       dg.SUB_STYLE_MIXED)
         elif kw == "sub" and any(k == "sub" for _, k, _ in self.open):
             self.error(i, "Nested subroutine definition")
         elif kw in ("sub", "if", "repeat", "do"):
@@ -129,6 +140,11 @@ class _Matcher:
 
     def _loop(self, label: str, kind: str, head: int, end: int) -> None:
         lp = Loop(label, kind, head, end)
+        if kind == "repeat":  # LinuxCNC 2.9 has break and continue for while and do loops only
+            jump = next((k for k in range(head + 1, end) if (ow := self.fx.owords.get(k)) is not None
+                         and ow.label == label and ow.keyword in ("break", "continue")), None)
+            if jump is not None:
+                self.fx.repeat_jumps[head] = jump
         self.fx.loops.append(lp)
         self.fx.loop_at[head] = lp
         self.fx.loop_at[end] = lp

@@ -5,7 +5,8 @@ the mode changes.  LinuxCNC's interpreter calls the canonical functions for ever
 such code it reads, and adds calls of its own.  :func:`after_block` edits the IR of
 one executed block (``out[at:]``) so that the canon trace reads as ``rs274 -g``'s:
 
-- ``COMMENT("interpreter: ...")`` lines (the dialect's ``[canon_comments]``): feed
+- ``COMMENT("interpreter: ...")`` lines (the dialect's ``[canon.comments]``, recorded as
+  ``InterpreterReport(key)`` and written by the canon backend only): feed
   mode, cutter compensation, G80, G98/G99 every time; distance modes on a change;
   a work-system code that does not change the system;
 - ``SELECT_PLANE``/``USE_LENGTH_UNITS`` for G17-G19/G20-G21 even when unchanged;
@@ -14,7 +15,8 @@ one executed block (``out[at:]``) so that the canon trace reads as ``rs274 -g``'
 - canned cycles: ``CANON_EXACT_PATH`` for the cycle and the path mode restored after
   it; a start below R first rises to R, which becomes the cycle's initial level;
 - M2/M30: the resets (G54, XY plane, units-per-minute feed 0, spindle stop, coolant
-  off) before ``PROGRAM_END``.
+  off) before ``PROGRAM_END``, as ordinary commands (a translation writes those that change
+  the target's state before its M02: what the controller does at M2 anyway).
 """
 
 from __future__ import annotations
@@ -38,6 +40,7 @@ from cncc.ir import (
     FeedMode,
     FeedRate,
     Frame,
+    InterpreterReport,
     Origin,
     OriginKind,
     PathMode,
@@ -68,7 +71,9 @@ from cncc.source import Span
 if TYPE_CHECKING:
     from cncc.frontend.interp import Interpreter
 
-# op -> [canon_comments] key, reported every time the code is read
+# The trace-only IR records (written by the canon backend, ignored by the others).
+
+# op -> [canon.comments] key, reported every time the code is read
 _ALWAYS = {"comp_off": "comp_off", "comp_left": "comp_left", "comp_right": "comp_right",
            "comp_left_dynamic": "comp_left", "comp_right_dynamic": "comp_right",
            "inverse_time": "inverse_time", "feed_per_min_rs274": "per_min", "feed_per_rev_rs274": "per_rev",
@@ -85,6 +90,10 @@ _P_M_CODES = frozenset({500, 510, 520, 530, 620, 630, 640, 650, 660, 980})
 _P_CYCLES = frozenset({"drill_dwell", "tap_rs274", "tap_left_rs274", "bore_dwell_stop_rs274", "bore_manual_rs274",
                        "bore_dwell_feed_out_rs274"})
 _P_MODAL_OPS = frozenset({"arc_cw", "arc_ccw", "cubic_spline", "nurbs_begin"})
+_Q_G_CODES = frozenset({50, 100, 640, 730, 760, 830})
+_Q_M_CODES = frozenset({190, 610, 660, 670, 680})  # M61 Q: the tool number
+_Q_CYCLES = frozenset({"peck", "peck_high_speed"})
+_Q_WITHOUT_USER = "Q word with no G5, G10, G64, G73, G76, G83, M19, M66, M67, M68 or user M code that uses it"
 _P_WITHOUT_USER = ("P word with no G2 G3 G4 G10 G64 G5 G5.2 G76 G82 G86 G88 G89 or M50 M51 M52 M53 M62 M63 M64 M65 "
                    "M66 M98 or user M code to use it")
 
@@ -145,7 +154,38 @@ class Reporter:
                 not self._uses_p(words):
             it.emit_error(dg.CONTROLLER_REJECTS, span, _P_WITHOUT_USER)
             return False
+        if any(w.letter == "Q" for w in words) and it.dialect.option("p_word_check", False) and \
+                not self._uses_q(words):
+            it.emit_error(dg.CONTROLLER_REJECTS, span, _Q_WITHOUT_USER)
+            return False
+        if self._feeds_per_rev_without_speed(words):
+            it.emit_error(dg.ZERO_FEED, span, "Cannot feed with zero spindle speed in feed per rev mode")
+            return False
         return True
+
+    def _feeds_per_rev_without_speed(self, words: tuple[Word, ...]) -> bool:
+        """A feed move in G95 (the block's or the mode in force) with a feed rate but no spindle speed (S0 or
+        never set); without a feed rate rs274 reports that first."""
+        it = self.it
+        tenths = {round(w.value * 10) for w in words if w.letter == "G"}
+        per_rev = 950 in tenths or (it.modal.per_rev and not tenths & {930, 940})
+        rpm = next((w.value for w in words if w.letter == "S"), it.modal.spindle_rpm)
+        feed = next((w.value for w in words if w.letter == "F"), None if tenths & {940, 950} else it.modal.feed)
+        if not per_rev or rpm != 0 or not feed or not any(w.letter in "XYZABC" for w in words):
+            return False
+        motions = [t for t in tenths if t in (0, 10, 20, 30)]
+        return (motions[0] != 0) if motions else (it.modal.motion in ("linear", "arc_cw", "arc_ccw")
+                                                   and not it.modal.cycle and not tenths & {800})
+
+    def _uses_q(self, words: tuple[Word, ...]) -> bool:
+        """rs274's check_other_codes for Q: a code that reads it in the block, or G73/G83 in force."""
+        for w in words:
+            v = round(w.value * 10)
+            if (w.letter == "G" and v in _Q_G_CODES) or (w.letter == "M" and (v in _Q_M_CODES or 1000 <= v < 2000)):
+                return True
+        motion = any(w.letter == "G" and (c := self.it.dialect.code("G", round(w.value * 10))) is not None
+                     and c.group in ("motion", "cycle") for w in words)
+        return not motion and self.it.modal.cycle in _Q_CYCLES
 
     def _in_cycle(self, words: tuple[Word, ...]) -> bool:
         """The block runs a canned cycle: a cycle code in it, or the cycle in force and no other motion code."""
@@ -178,7 +218,7 @@ class Reporter:
     def after_block(self, span: Span, words: tuple[Word, ...], out: list[Command], at: int, before: Before) -> None:
         it = self.it
         ops = [c.op for c in (it.dialect.code("G", round(w.value * 10)) for w in words if w.letter == "G") if c]
-        added: list[tuple[int, Command]] = [(_COMMENT_STAGE[k], Comment(span, it.frame, self.comments[k]))
+        added: list[tuple[int, Command]] = [(_COMMENT_STAGE[k], InterpreterReport(span, it.frame, k))
                                             for k in self._comment_keys(ops, before) if k in self.comments]
         added += self._repeated_modes(span, ops, out[at:])
         stages = {id(cmd): stage for stage, cmd in added}
@@ -354,6 +394,8 @@ def _stage(c: Command, known: dict[int, int] | None = None) -> int:
     match c:
         case Comment():
             return 1
+        case InterpreterReport():
+            return 1
         case FeedRate():
             return 3
         case SpindleSpeed():
@@ -381,7 +423,7 @@ def _place(out: list[Command], at: int, stage: int, cmd: Command, known: dict[in
     """Insert ``cmd`` (of ``stage``) into ``out[at:]``, which is sorted by stage: a comment before
     the calls of its stage, anything else after them; its index.  ``cmd`` takes the frame of
     the command before it, so that the canon trace reports no offset change early."""
-    comment = isinstance(cmd, Comment)
+    comment = isinstance(cmd, Comment | InterpreterReport)
     k = next((i for i in range(at, len(out)) if _stage(out[i], known) > stage
               or (comment and _stage(out[i], known) == stage)), len(out))
     neighbour = out[k - 1] if k > at else (out[k] if k < len(out) else None)
