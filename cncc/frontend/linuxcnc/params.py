@@ -40,6 +40,15 @@ def read_only_number(n: int) -> bool:
     return any(n in r for r in READ_ONLY_NUMBERS)
 
 
+def coolant_after(state: CoolantState, flood: bool, mist: bool) -> tuple[bool, bool]:
+    """Flood and mist after an M7/M8/M9 (``state``): M9 turns both off, M7 and M8 add theirs."""
+    if state is CoolantState.OFF:
+        return False, False
+    if state is CoolantState.FLOOD:
+        return True, mist
+    return flood, True
+
+
 class SystemParameters:
     """The values of LinuxCNC's system parameters for one running program."""
 
@@ -60,12 +69,7 @@ class SystemParameters:
             elif isinstance(c, ToolChange):
                 self.spindle = SpindleState.OFF  # LinuxCNC stops the spindle for M6
             elif isinstance(c, Coolant):
-                if c.state is CoolantState.OFF:
-                    self.flood = self.mist = False
-                elif c.state is CoolantState.FLOOD:
-                    self.flood = True
-                else:
-                    self.mist = True
+                self.flood, self.mist = coolant_after(c.state, self.flood, self.mist)
 
     # ---- numbered
     def number(self, n: int) -> float | None:

@@ -368,14 +368,11 @@ class Reporter:
         out[k:k + 1] = [*resets, replace(out[k], frame=it.frame)]
 
     def _track_coolant(self, out: list[Command]) -> None:
+        from cncc.frontend.linuxcnc.params import coolant_after
+
         for c in out:
             if isinstance(c, Coolant):
-                if c.state is CoolantState.OFF:
-                    self.flood = self.mist = False
-                elif c.state is CoolantState.FLOOD:
-                    self.flood = True
-                else:
-                    self.mist = True
+                self.flood, self.mist = coolant_after(c.state, self.flood, self.mist)
 
 
 # The stage of LinuxCNC's order of execution at which each report is made.
