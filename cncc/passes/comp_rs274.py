@@ -276,6 +276,14 @@ class _State:
         yield from self.flush()
 
     # ---- the first move: entry
+    def _corner_arc(self, c: Motion, here: Vec6, mid: Pt, end: Pt, corner: Pt, left: bool) -> Iterator[Command]:
+        """An outside corner: the queued move ends at ``end``, then an arc about the programmed ``corner``
+        to ``mid`` (where the next move starts)."""
+        yield from self._move_endpoint_and_flush(c, end)
+        turn = -1 if left else 1
+        self._enqueue(_Queued(c, here, self._at(c, here, mid), corner, turn, sweep=_turn_angle(end, corner, turn, mid)))
+        yield from self.flush()
+
     def _first(self, c: Motion) -> Iterator[Command]:
         r, left = c.frame.comp_radius_mm, c.frame.comp_side is CompSide.LEFT
         here = self._here(c)
@@ -380,12 +388,7 @@ class _State:
             yield from self._move_endpoint_and_flush(c, start)
             self.endpoint = (cx, cy) if front is None or front.center is None else start  # as rs274 2.9
         elif beta > SMALL:  # outside corner: an arc about the programmed corner
-            yield from self._move_endpoint_and_flush(c, (cx, cy))
-            turn = -1 if left else 1
-            corner = self._at(c, here, mid)
-            self._enqueue(_Queued(c, here, corner, (opx, opy), turn,
-                                  sweep=_turn_angle((cx, cy), (opx, opy), turn, mid)))
-            yield from self.flush()
+            yield from self._corner_arc(c, here, mid, (cx, cy), (opx, opy), left)
             start = self.endpoint = mid
         else:
             yield from self.flush()
@@ -446,11 +449,7 @@ class _State:
             self.endpoint = (cx, cy)
         elif beta > SMALL:  # outside corner: an arc about the programmed corner
             mid = (opx + r * math.cos(delta), opy + r * math.sin(delta))
-            yield from self._move_endpoint_and_flush(c, (cx, cy))
-            turn = -1 if left else 1
-            self._enqueue(_Queued(c, here, self._at(c, here, mid), (opx, opy), turn,
-                                  sweep=_turn_angle((cx, cy), (opx, opy), turn, mid)))
-            yield from self.flush()
+            yield from self._corner_arc(c, here, mid, (cx, cy), (opx, opy), left)
             start = self.endpoint = mid
         else:
             yield from self.flush()
