@@ -6,6 +6,7 @@ computed here independently of cncc's code.
 
 from __future__ import annotations
 
+import itertools
 import re
 
 import pytest
@@ -41,25 +42,58 @@ def test_g7_arc_centre_stays_a_radius() -> None:
 
 
 # ---- G70 / G71 / G72 ----------------------------------------------------------------------------------
-def test_g7x_cut_is_refused_and_nothing_moves() -> None:
-    # The cut is not implemented (docs/decisions.md, lathe cycles and the licence): a G7x block that passes
-    # rs274's checks is an error at its cycle word, and no move comes from it.
-    for cycle in ("G70 Q100 D1 P2", "G71 Q100 D0.5 I1", "G72 Q100 I1", "G71.1 Q100", "G72.2 Q100 D0.2"):
-        text = "G21 G18 F100\n" + PROFILE + "G0 X10 Z2\n" + cycle + "\nG0 X20\nM2\n"
-        r = compile_text(text, dialect="linuxcnc", emit="canon")
-        assert not r.ok and "E0204" in codes(r), cycle
-        d = next(d for d in r.sink if d.code == "E0204")
-        assert text[d.span.start:d.span.end] == cycle.split()[0]
-        lines, _ = canon(text, "linuxcnc")
-        moves = calls(lines, "STRAIGHT_TRAVERSE", "STRAIGHT_FEED", "ARC_FEED")
-        assert moves and moves[-1][1][:3] == [10.0, 0.0, 2.0]  # the last move is the G0 before the cycle
+def _profile_x(z: float) -> float:
+    """PROFILE (X2 Z0, X4 Z-5, X8 Z-12) as x of z, computed here."""
+    if z >= -5:
+        return 2 + (0 - z) * 2 / 5
+    return 4 + (-5 - z) * 4 / 7
+
+
+def test_g71_never_cuts_past_the_profile_and_moves_only_x_z() -> None:
+    # Safety: every end point of every move lies on or outside the profile (outside turning, the stock at
+    # larger X), and the cycle moves neither Y nor a rotary axis.
+    for cycle in ("G71 Q100 D0.5 I1", "G71 Q100 I0.7 R0.2", "G71.1 Q100 D0.2", "G71.2 Q100"):
+        got = _moves("G21 G18 F100\n" + PROFILE + "G0 X10 Y3 Z2 A5\n" + cycle + "\nM2\n")
+        assert len(got) > 5, cycle
+        for name, args in got:
+            x, y, z, a = (args[0], args[1], args[2], args[3]) if name != "ARC_FEED" else (args[1], 3.0, args[0], 5.0)
+            assert y == 3.0 and a == 5.0, (cycle, name, args)
+            if -12 <= z <= 0:
+                assert x >= _profile_x(z) - 1e-4, (cycle, name, args)
+
+
+def test_g71_levels_step_by_i_from_the_start_x() -> None:
+    # Manual: I is the cutting increment; the passes run along Z at X = start - n I, above the profile.
+    got = _moves("G21 G18 F100\n" + PROFILE + "G0 X12 Z3\nG71 Q100 I1.5\nM2\n")
+    # a feed along Z right after a rapid to its X
+    passes = [b[1][0] for a, b in itertools.pairwise(got)
+              if a[0] == "STRAIGHT_TRAVERSE" and b[0] == "STRAIGHT_FEED" and a[1][0] == b[1][0]]
+    assert passes == [12.0, 10.5, 9.0, 7.5, 6.0, 4.5, 3.0]
+
+
+def test_g70_pass_distances_follow_the_manual() -> None:
+    # Manual: pass n is (n-1)*(D-E)/P+E from the profile, towards the start point; the last pass is at E.
+    # The first profile line X2 Z0 -> X4 Z-5 has the unit normal (5, 2)/sqrt(29) towards the start point.
+    got = _moves("G21 G18 F100\n" + PROFILE + "G0 X12 Z3\nG70 Q100 D1 E0.2 P3\nM2\n")
+    n = (5 / 29 ** 0.5, 2 / 29 ** 0.5)
+    starts = [args for name, args in got if name == "STRAIGHT_TRAVERSE" and args[0] < 3]
+    for args, d in zip(starts, (2 * 0.8 / 3 + 0.2, 0.8 / 3 + 0.2, 0.2), strict=True):
+        assert args[0] == pytest.approx(2 + d * n[0], abs=1e-4) and args[2] == pytest.approx(d * n[1], abs=1e-4)
+    assert got[-1][0] == "STRAIGHT_FEED" and got[-1][1][0] == pytest.approx(8 + 0.2 * 7 / 65 ** 0.5, abs=1e-4)
+
+
+def test_g70_follows_the_profile() -> None:
+    # No D/E: one pass along the profile itself, ending at its end.
+    got = _moves("G21 G18 F100\n" + PROFILE + "G0 X12 Z3\nG70 Q100\nM2\n")
+    assert [args[:3:2] for _, args in got[-3:]] == [[2.0, 0.0], [4.0, -5.0], [8.0, -12.0]]
 
 
 @pytest.mark.parametrize(("text", "code", "line"), [
     ("G21 G18 F100\nG0 X10 Z5\nG71 D0.5\nM2\n", "E0481", 3),  # no Q
     ("G21 G18 F100\n" + PROFILE + "G0 X10 Z2\nG71 Q100 I0\nM2\n", "E0481", 8),  # I must be above zero
     ("G21 G17 F100\n" + PROFILE + "G0 X10 Z2\nG71 Q100\nM2\n", "E0482", 8),  # not G18
-    ("G21 G18 F100\nG0 X10 Z5\nG71 Q999\nM2\n", "E0204", 3),  # a valid block: refused, not implemented
+    ("G21 G18 F100\nG0 X10 Z5\nG71 Q999\nM2\n", "E0351", 3),  # no subroutine o999
+    ("G21 G18 F100\no100 sub\nG1 X2 Z0\nX4 Z-5\nX6 Z-2\no100 endsub\nG0 X10 Z2\nG71 Q100\nM2\n", "E0480", 8),
 ])
 def test_g7x_bad_input_is_a_positioned_error(text: str, code: str, line: int) -> None:
     r = compile_text(text, dialect="linuxcnc", emit="canon")

@@ -1,13 +1,11 @@
-"""LinuxCNC's lathe cycles G70 (finishing) and G71/G71.1/G71.2, G72/G72.1/G72.2 (roughing): refused.
+"""LinuxCNC's lathe cycles G70 (finishing) and G71/G71.1/G71.2, G72/G72.1/G72.2 (roughing): the checks.
 
 cncc checks a G7x block as rs274 2.9 does before it moves (no Q, a word the cycle does
 not read, a repeated word, U/W axis words, cutter compensation, a plane other than
 G18, ``I`` not above zero) and reports rs274's texts; a block that passes those checks
-is refused with E0204 at the cycle word, and nothing of the block moves.  The cut
-itself is not implemented: the only implementation at hand that matches rs274 move for
-move is a port of LinuxCNC's ``interp_g7x.cc`` (GPL-2.0-or-later), which cannot live in
-MIT-licensed cncc (docs/decisions.md, 2026-12-02, "lathe cycles and the licence").  An
-independent implementation from the G-code manual's description is the open work.
+is cut by :mod:`cncc.frontend.linuxcnc.g7x_run`.  The cycle is written from LinuxCNC's
+G-code manual and black-box runs of rs274 2.9, not from LinuxCNC's source (GPL-2.0):
+docs/decisions.md, 2026-12-02, "G70-G72 written from the manual".
 """
 
 from __future__ import annotations
@@ -89,7 +87,9 @@ def _number(words: tuple[Word, ...], letter: str, default: float) -> float:
 
 
 def run_g7x(ex: LinuxcncExecutor, fr: Frame, block: Block, words: tuple[Word, ...], g: Word) -> None:
-    """Check the block as rs274 does, then refuse it (E0204): the cycle is not implemented."""
+    """Check the block as rs274 does, read the Q profile, then cut it (:mod:`g7x_run`)."""
+    from cncc.frontend.linuxcnc.g7x_run import cut
+
     span = fr.index.span(block)
     cycle, sub = divmod(round(g.value * 10), 10)
     if _refusal(ex, span, words, cycle, f"G{cycle}.{sub}"):
@@ -97,7 +97,4 @@ def run_g7x(ex: LinuxcncExecutor, fr: Frame, block: Block, words: tuple[Word, ..
     if cycle != 70 and _number(words, "I", 1.0) <= 0:
         ex.fail(dg.LATHE_CYCLE_WORDS, span, "G7X error: I must be greater than zero.")
         return
-    ex.fail(dg.NOT_SUPPORTED, Span(span.source_id, g.start, g.end),
-            f"G{cycle}{'.' + str(sub) if sub else ''}: LinuxCNC's lathe roughing/finishing cycles are not "
-            "implemented in cncc yet; the block is not run (write the cut as G1/G2/G3 moves)")
-    ex.stopped = True
+    cut(ex, fr, span, words, cycle, sub)

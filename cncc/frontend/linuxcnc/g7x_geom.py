@@ -1,0 +1,232 @@
+"""Plane geometry of the G70-G72 profile: line and arc pieces, their offset, crossings, fillets.
+
+Written from LinuxCNC's G-code manual (G70, G71/G72) and black-box runs of rs274 2.9 only.
+Points are ``(w, u)`` pairs in the cycle's own frame (:mod:`cncc.frontend.linuxcnc.g7x_frame`):
+the cut travels towards -w, the start point (the stock) lies towards +u.  ``ccw`` is the
+arc's sense in that frame (w the first axis).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+P = tuple[float, float]
+EPS = 1e-9
+
+
+@dataclass(frozen=True, slots=True)
+class Piece:
+    a: P
+    b: P
+    c: P | None = None  # arc centre (None: a line)
+    ccw: bool = False
+
+    @property
+    def radius(self) -> float:
+        assert self.c is not None
+        return math.dist(self.a, self.c)
+
+
+def _sub(p: P, q: P) -> P:
+    return (p[0] - q[0], p[1] - q[1])
+
+
+def _unit(v: P) -> P:
+    n = math.hypot(v[0], v[1])
+    return (0.0, 0.0) if n < EPS else (v[0] / n, v[1] / n)
+
+
+def _cross(a: P, b: P) -> float:
+    return a[0] * b[1] - a[1] * b[0]
+
+
+def tangent(p: Piece, at_end: bool) -> P:
+    """Unit direction of travel at the start (or end) of the piece."""
+    if p.c is None:
+        return _unit(_sub(p.b, p.a))
+    r = _sub(p.b if at_end else p.a, p.c)
+    return _unit((-r[1], r[0]) if p.ccw else (r[1], -r[0]))
+
+
+def _angle(p: Piece, q: P) -> float:
+    assert p.c is not None
+    return math.atan2(q[1] - p.c[1], q[0] - p.c[0])
+
+
+def sweep(p: Piece) -> float:
+    """The arc's signed sweep in radians (ccw positive), in (0, 2 pi]."""
+    d = _angle(p, p.b) - _angle(p, p.a)
+    if p.ccw:
+        while d <= EPS:
+            d += 2 * math.pi
+    else:
+        while d >= -EPS:
+            d -= 2 * math.pi
+    return d
+
+
+def _on_arc(p: Piece, q: P) -> bool:
+    d = _angle(p, q) - _angle(p, p.a)
+    s = sweep(p)
+    if p.ccw:
+        d %= 2 * math.pi
+        return d <= s + 1e-12
+    d = -((-d) % (2 * math.pi))
+    return d >= s - 1e-12
+
+
+def split_extrema(p: Piece) -> list[Piece]:
+    """An arc cut where u turns (its top or bottom inside the arc); a line as it is."""
+    if p.c is None:
+        return [p]
+    r = p.radius
+    cuts = [q for q in ((p.c[0], p.c[1] + r), (p.c[0], p.c[1] - r))
+            if math.dist(q, p.a) > 1e-7 and math.dist(q, p.b) > 1e-7 and _on_arc(p, q)]
+    cuts.sort(key=lambda q: abs(_angle_from(p, q)))
+    out, start = [], p.a
+    for q in cuts:
+        out.append(Piece(start, q, p.c, p.ccw))
+        start = q
+    out.append(Piece(start, p.b, p.c, p.ccw))
+    return out
+
+
+def _angle_from(p: Piece, q: P) -> float:
+    d = _angle(p, q) - _angle(p, p.a)
+    return d % (2 * math.pi) if p.ccw else (-d) % (2 * math.pi)
+
+
+def at_u(p: Piece, level: float) -> P | None:
+    """The point of a u-monotonic piece at height ``level`` (None if it does not reach it)."""
+    lo, hi = sorted((p.a[1], p.b[1]))
+    if level < lo - EPS or level > hi + EPS:
+        return None
+    if p.c is None:
+        du = p.b[1] - p.a[1]
+        t = 0.0 if abs(du) < EPS else (level - p.a[1]) / du
+        return (p.a[0] + t * (p.b[0] - p.a[0]), level)
+    r = p.radius
+    dw = math.sqrt(max(r * r - (level - p.c[1]) ** 2, 0.0))
+    cands = [(p.c[0] + dw, level), (p.c[0] - dw, level)]
+    mid = ((p.a[0] + p.b[0]) / 2, 0.0)
+    good = [q for q in cands if _on_arc(p, q) or min(math.dist(q, p.a), math.dist(q, p.b)) < 1e-7]
+    return min(good or cands, key=lambda q: abs(q[0] - mid[0]))
+
+
+def cut_piece(p: Piece, start: P | None = None, end: P | None = None) -> Piece:
+    return Piece(start or p.a, end or p.b, p.c, p.ccw)
+
+
+# ---- offset ---------------------------------------------------------------------------------------
+def _shift(p: Piece, d: float) -> Piece:
+    """The piece moved ``d`` to the right of its travel."""
+    if p.c is None:
+        t = tangent(p, False)
+        n = (t[1], -t[0])
+        return Piece((p.a[0] + d * n[0], p.a[1] + d * n[1]), (p.b[0] + d * n[0], p.b[1] + d * n[1]))
+    r = p.radius
+    r2 = r + d if p.ccw else r - d
+    if r2 <= EPS:
+        raise ValueError("the offset is larger than an arc's radius")
+    f = r2 / r
+    c = p.c
+    return Piece((c[0] + (p.a[0] - c[0]) * f, c[1] + (p.a[1] - c[1]) * f),
+                 (c[0] + (p.b[0] - c[0]) * f, c[1] + (p.b[1] - c[1]) * f), c, p.ccw)
+
+
+def _circle_line(c: P, r: float, a: P, b: P) -> list[P]:
+    d = _sub(b, a)
+    f = _sub(a, c)
+    aa = d[0] ** 2 + d[1] ** 2
+    bb = 2 * (f[0] * d[0] + f[1] * d[1])
+    cc = f[0] ** 2 + f[1] ** 2 - r * r
+    disc = bb * bb - 4 * aa * cc
+    if aa < EPS or disc < -1e-12:
+        return []
+    s = math.sqrt(max(disc, 0.0))
+    return [(a[0] + t * d[0], a[1] + t * d[1]) for t in ((-bb - s) / (2 * aa), (-bb + s) / (2 * aa))]
+
+
+def _circles(c1: P, r1: float, c2: P, r2: float) -> list[P]:
+    dd = math.dist(c1, c2)
+    if dd < EPS or dd > r1 + r2 + 1e-12 or dd < abs(r1 - r2) - 1e-12:
+        return []
+    a = (r1 * r1 - r2 * r2 + dd * dd) / (2 * dd)
+    h = math.sqrt(max(r1 * r1 - a * a, 0.0))
+    m = (c1[0] + a * (c2[0] - c1[0]) / dd, c1[1] + a * (c2[1] - c1[1]) / dd)
+    return [(m[0] + h * (c2[1] - c1[1]) / dd, m[1] - h * (c2[0] - c1[0]) / dd),
+            (m[0] - h * (c2[1] - c1[1]) / dd, m[1] + h * (c2[0] - c1[0]) / dd)]
+
+
+def meet(p: Piece, q: Piece, near: P) -> P | None:
+    """Where the (extended) pieces p and q cross, the crossing nearest ``near``."""
+    if p.c is None and q.c is None:
+        d1, d2 = _sub(p.b, p.a), _sub(q.b, q.a)
+        den = _cross(d1, d2)
+        if abs(den) < EPS:
+            return None
+        t = _cross(_sub(q.a, p.a), d2) / den
+        return (p.a[0] + t * d1[0], p.a[1] + t * d1[1])
+    if p.c is None or q.c is None:
+        line, arc = (p, q) if p.c is None else (q, p)
+        assert arc.c is not None
+        cands = _circle_line(arc.c, arc.radius, line.a, line.b)
+    else:
+        assert p.c is not None and q.c is not None
+        cands = _circles(p.c, p.radius, q.c, q.radius)
+    return min(cands, key=lambda x: math.dist(x, near)) if cands else None
+
+
+def offset(pieces: list[Piece], d: float) -> list[Piece]:
+    """The profile ``d`` to the right of its travel: outside corners rounded (an arc about the corner),
+    inside corners trimmed to where the moved pieces cross."""
+    if abs(d) < EPS or not pieces:
+        return list(pieces)
+    moved = [_shift(p, d) for p in pieces]
+    out: list[Piece] = [moved[0]]
+    for k in range(1, len(moved)):
+        prev, cur = out[-1], moved[k]
+        vertex = pieces[k].a
+        turn = _cross(tangent(pieces[k - 1], True), tangent(pieces[k], False))
+        if math.dist(prev.b, cur.a) < 1e-9:
+            out.append(cur)
+        elif turn * d > 0:  # the moved pieces part: round the corner
+            out.append(Piece(prev.b, cur.a, vertex, d > 0))
+            out.append(cur)
+        else:
+            x = meet(prev, cur, vertex)
+            if x is None:
+                out.append(Piece(prev.b, cur.a))
+                out.append(cur)
+            else:
+                out[-1] = cut_piece(prev, end=x)
+                out.append(cut_piece(cur, start=x))
+    return out
+
+
+def corner(p: Piece, q: Piece, size: float, chamfer: bool) -> tuple[Piece, Piece, Piece] | None:
+    """A fillet (radius ``size``) or chamfer (the fillet's end points) between p and q."""
+    turn = _cross(tangent(p, True), tangent(q, False))
+    if abs(turn) < 1e-9 or size <= 0:
+        return None
+    side = -size if turn > 0 else size  # the centre lies inside the turn
+    try:
+        c = meet(_shift(p, side), _shift(q, side), p.b)
+    except ValueError:
+        return None
+    if c is None:
+        return None
+    t1, t2 = _foot(p, c), _foot(q, c)
+    join = Piece(t1, t2) if chamfer else Piece(t1, t2, c, turn > 0)
+    return cut_piece(p, end=t1), join, cut_piece(q, start=t2)
+
+
+def _foot(p: Piece, c: P) -> P:
+    if p.c is None:
+        d = _unit(_sub(p.b, p.a))
+        t = (c[0] - p.a[0]) * d[0] + (c[1] - p.a[1]) * d[1]
+        return (p.a[0] + t * d[0], p.a[1] + t * d[1])
+    v = _unit(_sub(c, p.c))
+    r = p.radius
+    return (p.c[0] + v[0] * r, p.c[1] + v[1] * r)
