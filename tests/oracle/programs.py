@@ -631,7 +631,7 @@ FEATURES: dict[str, Callable[[random.Random], Program]] = {
     "cycles": cycles, "cutter_comp": cutter_comp, "owords": owords, "path_feed": path_feed, "syntax": syntax,
     "parameters": parameters, "messages": messages, "m98_subs": m98_subs,
     "file_subs": file_subs,
-    "lathe_modes": lathe_modes, "threading": threading,  # lathe_roughing: G70-G72 not implemented (g7x.py)
+    "lathe_modes": lathe_modes, "threading": threading, "lathe_roughing": lathe_roughing,
 }
 FEATURES["arc_tolerance"] = arc_tolerance
 

@@ -20,7 +20,9 @@ FAST_COUNT = 6
 SLOW_COUNT = 200
 # Features whose classes of disagreement are not all fixed yet (issue 24); they run, and
 # report their disagreements, as expected failures.
-OPEN: frozenset[str] = frozenset()
+# lathe_roughing: G70-G72 written from the manual and black-box runs; the classes listed in
+# docs/dialects-notes.md (G72 with the stock below the profile, rs274's G71 endless loop, ...) are open.
+OPEN: frozenset[str] = frozenset({"lathe_roughing"})
 
 
 def _check(feature: str, count: int, seed: int) -> None:

@@ -17,6 +17,7 @@ Written from LinuxCNC's G-code manual and black-box runs of rs274 2.9 (no LinuxC
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 from cncc.frontend.linuxcnc.g7x_geom import EPS, P, Piece, at_u, cut_piece, split_extrema
@@ -37,6 +38,8 @@ class Rough:
     start: P
     step: float
     retract: float
+    own_grid: bool = False
+    first_plain: P = (0.0, 0.0)
     out: list[Move] = field(default_factory=list)
 
     def __post_init__(self) -> None:
@@ -58,14 +61,19 @@ class Rough:
         self.out.append(Move("feed", p))
 
     def along(self, p: Piece) -> None:
+        """A feed along the piece (an arc of no length is no move; a line of no length is, as in rs274)."""
+        if p.c is not None and math.dist(p.a, p.b) < 1e-9:
+            return
         self.out.append(Move("feed", p.b) if p.c is None else Move("arc", p.b, p))
 
     def levels(self, top: float, bottom: float, *, include_top: bool) -> list[float]:
-        """The grid levels start_u - n I in (bottom, top] (or (bottom, top))."""
+        """The grid levels base - n I in (bottom, top] (or (bottom, top)); the base is the start point's u,
+        or in G7x.2 (no main stage) the top of the pocket."""
         out: list[float] = []
         n = 0
+        base = top if self.own_grid else self.start[1]
         while True:
-            lv = self.start[1] - n * self.step
+            lv = base - n * self.step
             n += 1
             if lv <= bottom + EPS:
                 return out
@@ -101,8 +109,8 @@ class Rough:
             self.one_pass(level, w_in, self.reach(level, 0), feed_back=False)
 
     def entry_rapids(self) -> P:
-        """The start point moved along w to the profile's start when it lies past it."""
-        s = (max(self.start[0], self.first[0]), self.start[1])
+        """The start point moved along w to the (not offset) profile's start when it lies past it."""
+        s = (max(self.start[0], self.first_plain[0]), self.start[1])
         self.rapid(s)
         return s
 
@@ -172,20 +180,37 @@ def _line_at(a: P, b: P, level: float) -> float:
     return a[0] + (level - a[1]) * (b[0] - a[0]) / du
 
 
-def roughing(pieces: list[Piece], start: P, step: float, retract: float, variant: int) -> list[Move]:
-    """G71/G72 (variant 0), .1 (no pockets) or .2 (pockets only)."""
-    r = Rough(pieces, start, step, retract)
+def roughing(pieces: list[Piece], start: P, step: float, retract: float, variant: int,
+             plain_start: P) -> list[Move]:
+    """G71/G72 (variant 0), .1 (no pockets) or .2 (pockets only); ``plain_start``: the profile's start
+    before the D offset."""
+    r = Rough(pieces, start, step, retract, variant == 2, plain_start)
     r.rapid(start)
     if variant == 2:
         r.entry_rapids()
         r.pocket_walk()
-        return r.out
-    r.main_stage()
-    if variant == 1:
-        r.bridged()
     else:
-        r.pocket_walk()
-    return r.out
+        r.main_stage()
+        if variant == 1:
+            r.bridged()
+        else:
+            r.pocket_walk()
+    return merge_valleys(r.out)
+
+
+def merge_valleys(out: list[Move]) -> list[Move]:
+    """Two arc moves of one arc that meet at its lowest point are one move (rs274 splits an arc at its top
+    only)."""
+    merged: list[Move] = []
+    for m in out:
+        prev = merged[-1] if merged else None
+        if (m.kind == "arc" and prev is not None and prev.kind == "arc" and m.piece is not None
+                and prev.piece is not None and m.piece.c == prev.piece.c and m.piece.ccw == prev.piece.ccw
+                and m.piece.c is not None and abs(prev.end[1] - (m.piece.c[1] - m.piece.radius)) < 1e-9):
+            merged[-1] = Move("arc", m.end, Piece(prev.piece.a, m.piece.b, m.piece.c, m.piece.ccw))
+            continue
+        merged.append(m)
+    return merged
 
 
 def finishing(passes: list[list[Piece]], start: P) -> list[Move]:

@@ -57,11 +57,23 @@ def _plan(ex: LinuxcncExecutor, blocks: list[tuple[Word, ...]], start: ZX, words
         passes = [offset(ps, (p - 1) * (d - e) / n + e) for p in range(n, 0, -1)]
         return finishing(passes, s), f
     rough: list[Piece] = offset(ps, w.get("D", 0.0))
-    return roughing(rough, s, w.get("I", 1.0), w.get("R", 0.5), sub), f
+    return roughing(rough, s, w.get("I", 1.0), w.get("R", 0.5), sub, ps[0].a), f
+
+
+def _block_modes(ex: LinuxcncExecutor, words: tuple[Word, ...]) -> None:
+    """G90/G91 and F of the cycle's own block apply before the cycle (rs274's order of execution)."""
+    it = ex.it
+    tenths = {round(w.value * 10) for w in words if w.letter == "G"}
+    if 900 in tenths or 910 in tenths:
+        it.modal = it.modal.with_(incremental=910 in tenths)
+    f = next((w.value for w in words if w.letter == "F"), None)
+    if f is not None:
+        it.modal = it.modal.with_(feed=f)
 
 
 def cut(ex: LinuxcncExecutor, fr: Frame, span: Span, words: tuple[Word, ...], cycle: int, sub: int) -> None:
     it = ex.it
+    _block_modes(ex, words)
     label = str(round(next(v.value for v in words if v.letter == "Q")))
     scratch: list[Command] = []
     ctx = BlockContext(Block(0, span.start, span.end, ()), span, {}, [], scratch)
