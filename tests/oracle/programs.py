@@ -554,10 +554,11 @@ def _profile(rng: random.Random, k: float, along_z: bool) -> tuple[list[str], tu
             words.append(f"{rng.choice('AC')}{num(rng.uniform(0.1, 0.6) * k)}")
         lines.append(" ".join(words))
     first_z, first_x = (pts[0] if along_z else pts[0][::-1])
+    # the start point on the stock's side: past the highest point of the profile (it climbs as it goes)
     if along_z:
         start = (max(p[1] for p in pts) + rng.uniform(1, 4), first_z + rng.uniform(1, 3))
     else:
-        start = (first_x + rng.uniform(1, 3), min(p[1] for p in pts) - rng.uniform(1, 4))
+        start = (first_x + rng.uniform(1, 3), max(p[1] for p in pts) + rng.uniform(1, 4))
     return lines, start
 
 

@@ -169,6 +169,24 @@ class Rough:
         self.feed(self.last)
         self.close()
 
+    def below(self, bridged: bool) -> None:
+        """The start point lies below the profile's start: no pass; a feed along the entry line and the
+        profile (G7x.1: as its bridged pass prints it), and no feed back to the start height."""
+        s = self.entry_rapids()
+        if not bridged:
+            self.feed(self.first)
+            for p in self.pieces:
+                self.along(p)
+            return
+        env = s[1]
+        for p in [Piece(s, self.first), *self.pieces]:
+            if p.b[1] < env - EPS or (p.b[1] <= env + EPS and p.a[1] < env - EPS):
+                continue
+            start = p.a if p.a[1] >= env - EPS else at_u(p, env) or p.a
+            self.feed(start)
+            self.along(cut_piece(p, start=start))
+            env = max(env, p.b[1])
+
     def close(self) -> None:
         self.feed((self.last[0], self.start[1]))
 
@@ -186,6 +204,9 @@ def roughing(pieces: list[Piece], start: P, step: float, retract: float, variant
     before the D offset."""
     r = Rough(pieces, start, step, retract, variant == 2, plain_start)
     r.rapid(start)
+    if start[1] < r.first[1]:  # the start point below the profile: rs274 feeds along the profile, no pass
+        r.below(variant == 1)
+        return merge_valleys(r.out)
     if variant == 2:
         r.entry_rapids()
         r.pocket_walk()

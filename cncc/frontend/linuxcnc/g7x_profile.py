@@ -5,8 +5,9 @@ read as G1), each with an optional A (a fillet of that radius at its end point) 
 with the fillet's end points); all other words are ignored.  Positions follow the distance mode
 in force (G91: increments from the cycle's start point) and the diameter mode (X already halved
 by the executor).  The cycle's frame ``(w, u)``: w along the axis the cut travels (Z for G71, X for
-G72), signed so that the profile runs towards -w; u across, signed so that the start point lies
-at +u.  Written from the manual and black-box runs of rs274 2.9 only.
+G72), signed so that the profile runs towards -w; u across, signed so that the profile's end lies
+above its start (rs274 2.9 takes the stock to lie on that side: a start point below the profile's
+start cuts nothing, black-box finding).  Written from the manual and black-box runs of rs274 2.9 only.
 """
 
 from __future__ import annotations
@@ -145,7 +146,8 @@ def frame_for(moves: list[tuple[Piece, float, bool]], start: ZX, facing: bool) -
     first, last = moves[0][0].b, moves[-1][0].b
     axis = 1 if facing else 0
     a = -1.0 if last[axis] > first[axis] else 1.0
-    b = 1.0 if start[1 - axis] >= first[1 - axis] else -1.0
+    across = last[1 - axis] - first[1 - axis]  # rs274 takes the stock to lie where the profile climbs to
+    b = (1.0 if start[1 - axis] >= first[1 - axis] else -1.0) if abs(across) < 1e-12 else math.copysign(1.0, across)
     return Frame7x(facing, a, b)
 
 

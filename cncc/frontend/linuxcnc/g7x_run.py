@@ -52,11 +52,12 @@ def _plan(ex: LinuxcncExecutor, blocks: list[tuple[Word, ...]], start: ZX, words
     if not ps:
         raise ProfileError("G7x: the profile subroutine has no move")
     s = f.to(start)
+    side = 1.0  # towards the stock (the start point's side in any sensible program: manual, G70)
     if cycle == 70:
         d, e, n = w.get("D", 0.0), w.get("E", 0.0), max(int(w.get("P", 1.0)), 1)
-        passes = [offset(ps, (p - 1) * (d - e) / n + e) for p in range(n, 0, -1)]
+        passes = [offset(ps, side * ((p - 1) * (d - e) / n + e)) for p in range(n, 0, -1)]
         return finishing(passes, s), f
-    rough: list[Piece] = offset(ps, w.get("D", 0.0))
+    rough: list[Piece] = offset(ps, side * w.get("D", 0.0))
     return roughing(rough, s, w.get("I", 1.0), w.get("R", 0.5), sub, ps[0].a), f
 
 
