@@ -13,6 +13,10 @@ from dataclasses import dataclass
 
 P = tuple[float, float]
 EPS = 1e-9
+# An outside corner whose moved ends lie less than this apart along w (program units) is not rounded:
+# the moved pieces are extended to where they meet (rs274 2.9, black-box: the threshold is the same in
+# G20 and G21 and for every corner angle tried, 10-150 degrees).
+ROUND_MIN_W = 0.01
 
 
 @dataclass(frozen=True, slots=True)
@@ -179,8 +183,8 @@ def meet(p: Piece, q: Piece, near: P) -> P | None:
 
 
 def offset(pieces: list[Piece], d: float) -> list[Piece]:
-    """The profile ``d`` to the right of its travel: outside corners rounded (an arc about the corner),
-    inside corners trimmed to where the moved pieces cross."""
+    """The profile ``d`` to the right of its travel: outside corners rounded (an arc about the corner;
+    see :data:`ROUND_MIN_W`), inside corners trimmed to where the moved pieces cross."""
     if abs(d) < EPS or not pieces:
         return list(pieces)
     moved = [_shift(p, d) for p in pieces]
@@ -191,7 +195,7 @@ def offset(pieces: list[Piece], d: float) -> list[Piece]:
         turn = _cross(tangent(pieces[k - 1], True), tangent(pieces[k], False))
         if math.dist(prev.b, cur.a) < 1e-9:
             out.append(cur)
-        elif turn * d > 0:  # the moved pieces part: round the corner
+        elif turn * d > 0 and abs(prev.b[0] - cur.a[0]) >= ROUND_MIN_W:  # the moved pieces part: round it
             out.append(Piece(prev.b, cur.a, vertex, d > 0))
             out.append(cur)
         else:
