@@ -204,7 +204,7 @@ def roughing(pieces: list[Piece], start: P, step: float, retract: float, variant
     before the D offset."""
     r = Rough(pieces, start, step, retract, variant == 2, plain_start)
     r.rapid(start)
-    if start[1] < r.first[1]:  # the start point below the profile: rs274 feeds along the profile, no pass
+    if start[1] < plain_start[1] or r.last[1] < r.first[1]:  # rs274: a feed along the profile, no pass
         r.below(variant == 1)
         return merge_valleys(r.out)
     if variant == 2:

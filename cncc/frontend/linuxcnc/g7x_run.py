@@ -13,7 +13,7 @@ from typing import TYPE_CHECKING
 from cncc import diagnostics as dg
 from cncc.frontend.interp import BlockContext
 from cncc.frontend.linuxcnc.g7x_cut import Move, finishing, roughing
-from cncc.frontend.linuxcnc.g7x_geom import Piece, offset
+from cncc.frontend.linuxcnc.g7x_geom import Piece, offset, tangent
 from cncc.frontend.linuxcnc.g7x_profile import ZX, Frame7x, ProfileError, capture, frame_for, monotonic, pieces, read
 from cncc.frontend.ops import block_motion, feed_mm_min
 from cncc.frontend.syntax import Block, Word
@@ -40,6 +40,18 @@ def _arc_absolute(ex: LinuxcncExecutor) -> bool:
     return bool(st is not None and st.arc_absolute)
 
 
+def _side(ps: list[Piece], s: tuple[float, float]) -> float:
+    """+1: the D/E distances go towards +u (the stock).  With the start point on the far side of the profile
+    (no roughing pass) rs274 2.9 offsets towards the side of the first piece's line the start point lies on
+    (black-box finding; the manual: "a positive distance towards this point")."""
+    first, last = ps[0].a, ps[-1].b
+    if (s[1] >= first[1] and last[1] >= first[1]) or len(ps) == 1:  # one piece: towards +u all the same
+        return 1.0
+    t = tangent(ps[0], False)
+    cross = t[0] * (s[1] - first[1]) - t[1] * (s[0] - first[0])
+    return 1.0 if cross <= 0 else -1.0
+
+
 def _plan(ex: LinuxcncExecutor, blocks: list[tuple[Word, ...]], start: ZX, words: tuple[Word, ...],
           cycle: int, sub: int) -> tuple[list[Move], Frame7x]:
     w = {v.letter: v.value for v in words}
@@ -52,7 +64,7 @@ def _plan(ex: LinuxcncExecutor, blocks: list[tuple[Word, ...]], start: ZX, words
     if not ps:
         raise ProfileError("G7x: the profile subroutine has no move")
     s = f.to(start)
-    side = 1.0  # towards the stock (the start point's side in any sensible program: manual, G70)
+    side = _side(ps, s)
     if cycle == 70:
         d, e, n = w.get("D", 0.0), w.get("E", 0.0), max(int(w.get("P", 1.0)), 1)
         passes = [offset(ps, side * ((p - 1) * (d - e) / n + e)) for p in range(n, 0, -1)]
