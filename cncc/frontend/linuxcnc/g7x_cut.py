@@ -158,8 +158,13 @@ class Rough:
     def bridged(self) -> None:
         """G7x.1's last pass: the profile with its pockets bridged."""
         self.rapid(self.first)
-        env = self.first[1]
-        for p in self.pieces:
+        k = 0
+        while k < len(self.pieces) and self.pieces[k].b[1] < self.pieces[k].a[1] - EPS:
+            k += 1
+        if k:  # a profile that starts going down: that first pocket is cut, down to its valley
+            self._pocket(0, k - 1)
+        env = self.pieces[k - 1].b[1] if k else self.first[1]
+        for p in self.pieces[k:]:
             if p.b[1] < env - EPS or (p.b[1] <= env + EPS and p.a[1] < env - EPS):
                 continue
             start = p.a if p.a[1] >= env - EPS else at_u(p, env) or p.a
