@@ -199,14 +199,35 @@ def offset(pieces: list[Piece], d: float) -> list[Piece]:
             out.append(Piece(prev.b, cur.a, vertex, d > 0))
             out.append(cur)
         else:
-            x = meet(prev, cur, vertex)
-            if x is None:
-                out.append(Piece(prev.b, cur.a))
-                out.append(cur)
-            else:
-                out[-1] = cut_piece(prev, end=x)
-                out.append(cut_piece(cur, start=x))
+            _trim(out, cur, vertex)
     return out
+
+
+def _reversed(p: Piece, q: Piece) -> bool:
+    """A trimmed line ``q`` that now runs against its untrimmed self ``p`` (it has vanished)."""
+    return p.c is None and q.c is None and ((q.b[0] - q.a[0]) * (p.b[0] - p.a[0])
+                                              + (q.b[1] - q.a[1]) * (p.b[1] - p.a[1])) <= 0
+
+
+def _trim(out: list[Piece], cur: Piece, vertex: P) -> None:
+    """Join ``cur`` to the end of ``out`` at an inside corner: both trimmed to where they cross.  A line
+    trimmed away (a short piece, e.g. a chamfer, between two inside corners) is dropped and its
+    neighbours meet instead."""
+    while True:
+        prev = out[-1]
+        x = meet(prev, cur, vertex)
+        if x is None:
+            out.append(Piece(prev.b, cur.a))
+            out.append(cur)
+            return
+        trimmed = cut_piece(prev, end=x)
+        if len(out) > 1 and _reversed(prev, trimmed) and out[-2].c is None:
+            out.pop()
+            vertex = out[-1].b
+            continue
+        out[-1] = trimmed
+        out.append(cut_piece(cur, start=x))
+        return
 
 
 def corner(p: Piece, q: Piece, size: float, chamfer: bool) -> tuple[Piece, Piece, Piece] | None:
