@@ -126,7 +126,11 @@ class Rough:
             j = k
             while j + 1 < n and self.pieces[j + 1].b[1] < self.pieces[j + 1].a[1] - EPS:
                 j += 1
-            self._pocket(k, j)
+            if k == 0 and self.own_grid:  # G7x.2: the pocket at the start is G7x.1's (manual), followed only
+                for q in self.pieces[: j + 1]:
+                    self.along(q)
+            else:
+                self._pocket(k, j)
             k = j + 1
         self.close()
 
@@ -171,7 +175,7 @@ class Rough:
             self.feed(start)
             self.along(cut_piece(p, start=start))
             env = max(env, p.b[1])
-        self.feed(self.last)
+        self.feed((self.last[0], max(env, self.last[1])))  # a pocket at the end: bridged too
         self.close()
 
     def below(self, bridged: bool) -> None:
@@ -239,12 +243,14 @@ def merge_valleys(out: list[Move]) -> list[Move]:
     return merged
 
 
-def finishing(passes: list[list[Piece]], start: P) -> list[Move]:
-    """G70: each pass along its profile, a rapid to the start point between them."""
-    out = [Move("rapid", start), Move("rapid", start)]
+def finishing(passes: list[list[Piece]], start: P, plain_start: P) -> list[Move]:
+    """G70: each pass along its profile, a rapid between them to the start point (moved along w to the
+    profile's start when it lies past it, as in the roughing cycles)."""
+    s = (max(start[0], plain_start[0]), start[1])
+    out = [Move("rapid", start), Move("rapid", s)]
     for n, pieces in enumerate(passes):
         if n:
-            out.append(Move("rapid", start))
+            out.append(Move("rapid", s))
         out.append(Move("rapid", pieces[0].a))
         out.extend(Move("feed", p.b) if p.c is None else Move("arc", p.b, p) for p in pieces)
     return out

@@ -68,7 +68,7 @@ def _plan(ex: LinuxcncExecutor, blocks: list[tuple[Word, ...]], start: ZX, words
     if cycle == 70:
         d, e, n = w.get("D", 0.0), w.get("E", 0.0), max(int(w.get("P", 1.0)), 1)
         passes = [offset(ps, side * ((p - 1) * (d - e) / n + e)) for p in range(n, 0, -1)]
-        return finishing(passes, s), f
+        return finishing(passes, s, ps[0].a), f
     rough: list[Piece] = offset(ps, side * w.get("D", 0.0))
     return roughing(rough, s, w.get("I", 1.0), w.get("R", 0.5), sub, ps[0].a), f
 
