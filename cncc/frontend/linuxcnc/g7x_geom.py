@@ -163,8 +163,9 @@ def _circles(c1: P, r1: float, c2: P, r2: float) -> list[P]:
             (m[0] - h * (c2[1] - c1[1]) / dd, m[1] + h * (c2[0] - c1[0]) / dd)]
 
 
-def meet(p: Piece, q: Piece, near: P) -> P | None:
-    """Where the (extended) pieces p and q cross, the crossing nearest ``near``."""
+def meet(p: Piece, q: Piece, near: P, *, rs274_arcs: bool = False) -> P | None:
+    """Where the (extended) pieces p and q cross, the crossing nearest ``near`` (``rs274_arcs``: of two
+    circles, the crossing rs274 2.9 takes at an offset corner)."""
     if p.c is None and q.c is None:
         d1, d2 = _sub(p.b, p.a), _sub(q.b, q.a)
         den = _cross(d1, d2)
@@ -176,9 +177,10 @@ def meet(p: Piece, q: Piece, near: P) -> P | None:
         line, arc = (p, q) if p.c is None else (q, p)
         assert arc.c is not None
         cands = _circle_line(arc.c, arc.radius, line.a, line.b)
-    else:
+    else:  # rs274 2.9 takes the crossing to the right of the line from p's centre to q's (black-box),
+        # which is not always the one at the corner
         assert p.c is not None and q.c is not None
-        cands = _circles(p.c, p.radius, q.c, q.radius)
+        cands = _circles(p.c, p.radius, q.c, q.radius)[: 1 if rs274_arcs else 2]
     return min(cands, key=lambda x: math.dist(x, near)) if cands else None
 
 
@@ -215,7 +217,7 @@ def _trim(out: list[Piece], cur: Piece, vertex: P) -> None:
     neighbours meet instead."""
     while True:
         prev = out[-1]
-        x = meet(prev, cur, vertex)
+        x = meet(prev, cur, vertex, rs274_arcs=True)
         if x is None:
             out.append(Piece(prev.b, cur.a))
             out.append(cur)
