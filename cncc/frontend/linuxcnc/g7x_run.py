@@ -40,14 +40,15 @@ def _arc_absolute(ex: LinuxcncExecutor) -> bool:
     return bool(st is not None and st.arc_absolute)
 
 
-def _side(ps: list[Piece], s: tuple[float, float]) -> float:
+def _side(ps: list[Piece], s: tuple[float, float], *, finishing: bool) -> float:
     """+1: the D/E distances go towards +u (the stock).  With the start point on the far side of the profile
-    (no roughing pass) rs274 2.9 offsets towards the side of the first piece's line the start point lies on
-    (black-box finding; the manual: "a positive distance towards this point")."""
+    (no roughing pass), and always in G70, rs274 2.9 offsets towards the side of the first piece's line
+    the start point lies on (black-box finding; the manual, G70: "a positive distance towards this
+    point")."""
     first, last = ps[0].a, ps[-1].b
-    if (s[1] >= first[1] and last[1] >= first[1]) or len(ps) == 1:  # one piece: towards +u all the same
-        return 1.0
-    t = tangent(ps[0], False)
+    if not finishing and ((s[1] >= first[1] and last[1] >= first[1]) or len(ps) == 1):
+        return 1.0  # (one piece: towards +u all the same)
+    t = (ps[0].b[0] - first[0], ps[0].b[1] - first[1])  # the first piece's chord
     cross = t[0] * (s[1] - first[1]) - t[1] * (s[0] - first[0])
     return 1.0 if cross <= 0 else -1.0
 
@@ -64,7 +65,7 @@ def _plan(ex: LinuxcncExecutor, blocks: list[tuple[Word, ...]], start: ZX, words
     if not ps:
         raise ProfileError("G7x: the profile subroutine has no move")
     s = f.to(start)
-    side = _side(ps, s)
+    side = _side(ps, s, finishing=cycle == 70)
     if cycle == 70:
         d, e, n = w.get("D", 0.0), w.get("E", 0.0), max(int(w.get("P", 1.0)), 1)
         passes = [offset(ps, side * ((p - 1) * (d - e) / n + e)) for p in range(n, 0, -1)]
