@@ -13,7 +13,7 @@ from typing import TYPE_CHECKING
 from cncc import diagnostics as dg
 from cncc.frontend.interp import BlockContext
 from cncc.frontend.linuxcnc.g7x_cut import Move, finishing, roughing
-from cncc.frontend.linuxcnc.g7x_geom import Piece, offset, tangent
+from cncc.frontend.linuxcnc.g7x_geom import Piece, offset
 from cncc.frontend.linuxcnc.g7x_profile import ZX, Frame7x, ProfileError, capture, frame_for, monotonic, pieces, read
 from cncc.frontend.ops import block_motion, feed_mm_min
 from cncc.frontend.syntax import Block, Word
