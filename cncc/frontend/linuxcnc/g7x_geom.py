@@ -70,7 +70,7 @@ def sweep(p: Piece) -> float:
     return d
 
 
-def _on_arc(p: Piece, q: P) -> bool:
+def on_arc(p: Piece, q: P) -> bool:
     d = _angle(p, q) - _angle(p, p.a)
     s = sweep(p)
     if p.ccw:
@@ -86,7 +86,7 @@ def split_extrema(p: Piece) -> list[Piece]:
         return [p]
     r = p.radius
     cuts = [q for q in ((p.c[0], p.c[1] + r), (p.c[0], p.c[1] - r))
-            if math.dist(q, p.a) > 1e-7 and math.dist(q, p.b) > 1e-7 and _on_arc(p, q)]
+            if math.dist(q, p.a) > 1e-7 and math.dist(q, p.b) > 1e-7 and on_arc(p, q)]
     cuts.sort(key=lambda q: abs(_angle_from(p, q)))
     out, start = [], p.a
     for q in cuts:
@@ -114,7 +114,7 @@ def at_u(p: Piece, level: float) -> P | None:
     dw = math.sqrt(max(r * r - (level - p.c[1]) ** 2, 0.0))
     cands = [(p.c[0] + dw, level), (p.c[0] - dw, level)]
     mid = ((p.a[0] + p.b[0]) / 2, 0.0)
-    good = [q for q in cands if _on_arc(p, q) or min(math.dist(q, p.a), math.dist(q, p.b)) < 1e-7]
+    good = [q for q in cands if on_arc(p, q) or min(math.dist(q, p.a), math.dist(q, p.b)) < 1e-7]
     return min(good or cands, key=lambda q: abs(q[0] - mid[0]))
 
 

@@ -14,6 +14,7 @@ from cncc import diagnostics as dg
 from cncc.frontend.interp import BlockContext
 from cncc.frontend.linuxcnc.g7x_cut import Move, finishing, roughing
 from cncc.frontend.linuxcnc.g7x_geom import Piece, offset
+from cncc.frontend.linuxcnc.g7x_safety import first_gouge
 from cncc.frontend.linuxcnc.g7x_profile import ZX, Frame7x, ProfileError, capture, frame_for, monotonic, pieces, read
 from cncc.frontend.ops import block_motion, feed_mm_min
 from cncc.frontend.syntax import Block, Word
@@ -69,9 +70,16 @@ def _plan(ex: LinuxcncExecutor, blocks: list[tuple[Word, ...]], start: ZX, words
     if cycle == 70:
         d, e, n = w.get("D", 0.0), w.get("E", 0.0), max(int(w.get("P", 1.0)), 1)
         passes = [offset(ps, side * ((p - 1) * (d - e) / n + e)) for p in range(n, 0, -1)]
-        return finishing(passes, s, ps[0].a), f
-    rough: list[Piece] = offset(ps, side * w.get("D", 0.0))
-    return roughing(rough, s, w.get("I", 1.0), w.get("R", 0.5), sub, ps[0].a), f
+        out = finishing(passes, s, ps[0].a)
+    else:
+        rough: list[Piece] = offset(ps, side * w.get("D", 0.0))
+        out = roughing(rough, s, w.get("I", 1.0), w.get("R", 0.5), sub, ps[0].a)
+    above = s[1] >= ps[0].a[1] and ps[-1].b[1] >= ps[0].a[1] and side > 0
+    if above and (bad := first_gouge(ps, s, out[1:])) is not None:  # (the first rapid is the block's own)
+        z, x = f.back(bad[0])
+        raise ProfileError(f"G{cycle}: a {bad[1]} move of the cycle would cut into the profile at X{x:.4f} "
+                           f"Z{z:.4f}; nothing is run")
+    return out, f
 
 
 def _block_modes(ex: LinuxcncExecutor, words: tuple[Word, ...]) -> None:
