@@ -14,8 +14,8 @@ from cncc import diagnostics as dg
 from cncc.frontend.interp import BlockContext
 from cncc.frontend.linuxcnc.g7x_cut import Move, finishing, roughing
 from cncc.frontend.linuxcnc.g7x_geom import Piece, offset
-from cncc.frontend.linuxcnc.g7x_safety import first_gouge
 from cncc.frontend.linuxcnc.g7x_profile import ZX, Frame7x, ProfileError, capture, frame_for, monotonic, pieces, read
+from cncc.frontend.linuxcnc.g7x_safety import first_gouge
 from cncc.frontend.ops import block_motion, feed_mm_min
 from cncc.frontend.syntax import Block, Word
 from cncc.ir import Arc, Command, Linear, Origin, OriginKind, Plane, Rapid, Vec6
