@@ -257,3 +257,15 @@ def _foot(p: Piece, c: P) -> P:
     v = _unit(_sub(c, p.c))
     r = p.radius
     return (p.c[0] + v[0] * r, p.c[1] + v[1] * r)
+
+
+def runs_down_w(pieces: list[Piece]) -> bool:
+    """Every piece runs towards -w (or across): no turning back along the cut's axis."""
+    for p in pieces:
+        if p.b[0] > p.a[0] + 1e-9:
+            return False
+        if p.c is not None:
+            swapped = Piece((p.a[1], p.a[0]), (p.b[1], p.b[0]), (p.c[1], p.c[0]), not p.ccw)
+            if len(split_extrema(swapped)) > 1:
+                return False
+    return True

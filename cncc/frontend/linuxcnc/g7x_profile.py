@@ -183,7 +183,7 @@ def pieces(moves: list[tuple[Piece, float, bool]], f: Frame7x) -> list[Piece]:
         if out and pending[0] > 0:
             got = corner(out[-1], p, pending[0], pending[1])
             if got is None:
-                raise ProfileError("Not monotonic")
+                raise ProfileError("G7X error: Not monotonic")
             out[-1] = got[0]
             out.append(got[1])
             p = got[2]

@@ -13,7 +13,7 @@ from typing import TYPE_CHECKING
 from cncc import diagnostics as dg
 from cncc.frontend.interp import BlockContext
 from cncc.frontend.linuxcnc.g7x_cut import Move, finishing, roughing
-from cncc.frontend.linuxcnc.g7x_geom import Piece, offset
+from cncc.frontend.linuxcnc.g7x_geom import Piece, offset, runs_down_w
 from cncc.frontend.linuxcnc.g7x_profile import ZX, Frame7x, ProfileError, capture, frame_for, monotonic, pieces, read
 from cncc.frontend.linuxcnc.g7x_safety import first_gouge
 from cncc.frontend.ops import block_motion, feed_mm_min
@@ -60,7 +60,7 @@ def _plan(ex: LinuxcncExecutor, blocks: list[tuple[Word, ...]], start: ZX, words
     moves = read(blocks, start, ex.it.modal.incremental, _arc_absolute(ex))
     facing = cycle == 72 or (cycle == 70 and not monotonic(moves, False))
     if not monotonic(moves, facing):
-        raise ProfileError("Not monotonic")
+        raise ProfileError("G7X error: Not monotonic")
     f = frame_for(moves, start, facing)
     ps = pieces(moves, f)
     if not ps:
@@ -70,9 +70,13 @@ def _plan(ex: LinuxcncExecutor, blocks: list[tuple[Word, ...]], start: ZX, words
     if cycle == 70:
         d, e, n = w.get("D", 0.0), w.get("E", 0.0), max(int(w.get("P", 1.0)), 1)
         passes = [offset(ps, side * ((p - 1) * (d - e) / n + e)) for p in range(n, 0, -1)]
+        if not all(runs_down_w(q) for q in passes):
+            raise ProfileError("G7X error: Not monotonic")
         out = finishing(passes, s, ps[0].a)
     else:
         rough: list[Piece] = offset(ps, side * w.get("D", 0.0))
+        if not runs_down_w(rough):  # rs274 checks the offset profile too
+            raise ProfileError("G7X error: Not monotonic")
         out = roughing(rough, s, w.get("I", 1.0), w.get("R", 0.5), sub, ps[0].a)
     above = s[1] >= ps[0].a[1] and ps[-1].b[1] >= ps[0].a[1] and side > 0
     if above and (bad := first_gouge(ps, s, out[1:])) is not None:  # (the first rapid is the block's own)
