@@ -12,8 +12,7 @@ pytestmark = pytest.mark.skipif(rs274_path() is None, reason="LinuxCNC's rs274 i
                                 "(run scripts/ensure-rs274.sh; it needs apt-get and dpkg)")
 
 # Classes of issue 24 not fixed yet: cncc disagrees with rs274 on these (docs/dialects-notes.md).
-# g71_large_d: D larger than an arc's radius; rs274 still cuts (its geometry there is not known), cncc stops (E0480).
-OPEN_CASES = frozenset({"tool_not_in_table", "g71_large_d"})
+OPEN_CASES = frozenset({"tool_not_in_table"})
 
 
 @pytest.mark.parametrize("name", sorted(CASES))

@@ -197,7 +197,9 @@ class Rough:
             env = max(env, p.b[1])
 
     def close(self) -> None:
-        self.feed((self.last[0], self.start[1]))
+        """The feed from the profile's end across to the start height (none when the end lies above it)."""
+        if self.last[1] <= self.start[1] + EPS:
+            self.feed((self.last[0], self.start[1]))
 
 
 def _line_at(a: P, b: P, level: float) -> float:

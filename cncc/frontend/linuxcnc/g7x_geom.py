@@ -189,19 +189,46 @@ def offset(pieces: list[Piece], d: float) -> list[Piece]:
     see :data:`ROUND_MIN_W`), inside corners trimmed to where the moved pieces cross."""
     if abs(d) < EPS or not pieces:
         return list(pieces)
-    moved = [_shift(p, d) for p in pieces]
-    out: list[Piece] = [moved[0]]
+    moved = _moved(pieces, d)
+    out: list[Piece] = [moved[0][0]]
     for k in range(1, len(moved)):
-        prev, cur = out[-1], moved[k]
-        vertex = pieces[k].a
-        turn = _cross(tangent(pieces[k - 1], True), tangent(pieces[k], False))
-        if math.dist(prev.b, cur.a) < 1e-9:
+        cur, orig, joined = moved[k]
+        prev = out[-1]
+        vertex = orig.a
+        turn = _cross(tangent(moved[k - 1][1], True), tangent(orig, False))
+        if joined or math.dist(prev.b, cur.a) < 1e-9:
             out.append(cur)
         elif turn * d > 0 and abs(prev.b[0] - cur.a[0]) >= ROUND_MIN_W:  # the moved pieces part: round it
             out.append(Piece(prev.b, cur.a, vertex, d > 0))
             out.append(cur)
         else:
             _trim(out, cur, vertex)
+    return out
+
+
+def _moved(pieces: list[Piece], d: float) -> list[tuple[Piece, Piece, bool]]:
+    """Each piece moved by d, with the piece it came from and whether it joins the one before as it is.
+    An arc whose moved radius would vanish (a concave arc smaller than d) becomes two arcs of radius |d|
+    about its end points, meeting where those circles cross (as rs274 2.9 does, black-box)."""
+    out: list[tuple[Piece, Piece, bool]] = []
+    for k, p in enumerate(pieces):
+        try:
+            out.append((_shift(p, d), p, False))
+            continue
+        except ValueError:
+            if k == 0 or k == len(pieces) - 1:
+                raise
+        a_end = _shift(pieces[k - 1], d).b
+        b_start = _shift(pieces[k + 1], d).a
+        t = _unit(_sub(p.b, p.a))
+        side = (t[1], -t[0]) if d > 0 else (-t[1], t[0])
+        cands = _circles(p.a, abs(d), p.b, abs(d))
+        if not cands:
+            raise ValueError("the offset is larger than an arc's radius")
+        mid = ((p.a[0] + p.b[0]) / 2 + side[0], (p.a[1] + p.b[1]) / 2 + side[1])
+        x = min(cands, key=lambda q: math.dist(q, mid))
+        out.append((Piece(a_end, x, p.a, d > 0), Piece(p.a, p.a), True))
+        out.append((Piece(x, b_start, p.b, d > 0), Piece(p.b, p.b), True))
     return out
 
 
