@@ -102,6 +102,76 @@ def test_g7x_bad_input_is_a_positioned_error(text: str, code: str, line: int) ->
     assert text[:d.span.start].count("\n") + 1 == line
 
 
+POCKET = "o100 sub\nG1 X2 Z0\nX6 Z-4\nX3 Z-7\nX8 Z-10\no100 endsub\n"
+
+
+def test_g71_1_bridges_the_pocket_at_the_peak_height() -> None:
+    # Manual: G7x.1 does not cut pockets.  Its last pass crosses the pocket at the peak's height X6, from
+    # the peak Z-4 to where X3 Z-7 -> X8 Z-10 climbs back to X6: Z = -7 - 3 * (6 - 3) / 5 = -8.8.
+    got = _moves("G21 G18 F100\n" + POCKET + "G0 X10 Z2\nG71.1 Q100 I1\nM2\n")
+    feeds = [args[:3:2] for name, args in got if name == "STRAIGHT_FEED"]
+    k = len(feeds) - 1 - feeds[::-1].index([6.0, -4.0])  # the last pass reaches the peak
+    assert feeds[k + 1] == pytest.approx([6.0, -8.8], abs=1e-4)
+    assert all(x >= 6 - 1e-9 for x, z in feeds[k:] if -8.8 < z < -4)  # nothing goes into the pocket
+
+
+def test_g71_2_cuts_the_pocket_levels_only() -> None:
+    # Manual: G7x.2 only cuts the pockets: no feed above the peak X6 before the profile climbs past it
+    # again (Z-8.8, see above).
+    got = _moves("G21 G18 F100\n" + POCKET + "G0 X10 Z2\nG71.2 Q100 I1\nM2\n")
+    assert not [args for name, args in got if name == "STRAIGHT_FEED" and args[0] > 6 + 1e-9 and args[2] > -8.8]
+    levels = {args[0] for a, (name, args) in itertools.pairwise(got)
+              if name == "STRAIGHT_FEED" and a[1][0] == args[0] and args[2] < -4}
+    assert {4.0, 5.0, 6.0} <= levels
+
+
+def test_g71_short_pass_retracts_meet() -> None:
+    # A pass shorter than 2R: the 45-degree retract from its end and the one back to its entry meet at the
+    # apex of the triangle over the pass (independent computation: half the pass length up and along).
+    got = _moves("G21 G18 F100\n" + PROFILE + "G0 X2.6 Z0.3\nG71 Q100 I0.4 R5\nM2\n")
+    feeds = [k for k, (name, _) in enumerate(got) if name == "STRAIGHT_FEED"]
+    k = feeds[1]
+    x, z_end = got[k][1][0], got[k][1][2]
+    z_in = got[k - 1][1][2]
+    half = (z_in - z_end) / 2
+    assert got[k + 1][1][:3:2] == pytest.approx([x + half, z_end + half])
+    assert got[k + 2][1][:3:2] == pytest.approx([x + half, z_in - half])
+
+
+def test_g71_diameter_mode_is_the_radius_program() -> None:
+    dia = "G21 G18 F100\nG7\no100 sub\nG1 X4 Z0\nX8 Z-5\nX16 Z-12\no100 endsub\nG0 X24 Z3\nG71 Q100 D0.5 I1\nM2\n"
+    rad = "G21 G18 F100\n" + PROFILE + "G0 X12 Z3\nG71 Q100 D0.5 I1\nM2\n"
+    assert _moves(dia) == _moves(rad)
+
+
+def test_g7x_moves_are_the_same_on_the_fast_path(monkeypatch: pytest.MonkeyPatch) -> None:
+    from cncc.frontend.linuxcnc import executor
+
+    text = "G21 G18 F100\n" + POCKET + "G0 X10 Z2\nG71 Q100 D0.2 I0.7\nG0 X12\nG1 Z3\nM2\n"
+    monkeypatch.setattr(executor, "FAST_MOVES", True)
+    fast = _moves(text)
+    monkeypatch.setattr(executor, "FAST_MOVES", False)
+    assert _moves(text) == fast
+
+
+def test_g70_refused_when_its_return_rapid_would_clip_the_part() -> None:
+    # A convex arc at the end of a facing profile: the straight rapid from its end back to the start point
+    # passes under the arc's bulge.  cncc refuses the cycle (E0480) and runs none of its moves.
+    text = ("G21 G18 F150\no100 sub\nG0 X-3.1004 Z2.772\nG1 X-6.3252 Z3.7502\nG2 X-10.4226 Z4.6556 R3.2683\n"
+            "o100 endsub\nG0 X-1.1318 Z5.669\nG70 Q100 D0.3125 E0.0968 P3\nM2\n")
+    r = compile_text(text, dialect="linuxcnc", emit="canon")
+    assert not r.ok and "E0480" in codes(r)
+    lines, _ = canon(text, "linuxcnc")
+    assert len(calls(lines, "STRAIGHT_TRAVERSE", "STRAIGHT_FEED", "ARC_FEED")) == 1  # the G0 before it
+
+
+def test_g71_translates_to_plain_moves() -> None:
+    r = compile_text("G21 G18 F100\n" + PROFILE + "G0 X12 Z3\nG71 Q100 I2\nM2\n", dialect="linuxcnc",
+                     emit="gcode", target="fanuc")
+    assert r.ok, [d.message for d in r.sink]
+    assert "G71" not in r.output and re.search(r"G0?1\b", r.output)
+
+
 def test_g7x_word_it_does_not_read() -> None:
     # rs274's check_items: G70 reads D E P Q, G71/G72 D I Q R.
     for cycle, word in (("G70", "I1"), ("G71", "E1"), ("G71", "P2"), ("G72", "K1")):
