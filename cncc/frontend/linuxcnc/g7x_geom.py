@@ -206,10 +206,17 @@ def offset(pieces: list[Piece], d: float) -> list[Piece]:
     return out
 
 
+def _smooth(p: Piece, q: Piece) -> bool:
+    """q continues p without a corner."""
+    t1, t2 = tangent(p, True), tangent(q, False)
+    return abs(_cross(t1, t2)) < 1e-6 and t1[0] * t2[0] + t1[1] * t2[1] > 0
+
+
 def _moved(pieces: list[Piece], d: float) -> list[tuple[Piece, Piece, bool]]:
     """Each piece moved by d, with the piece it came from and whether it joins the one before as it is.
     An arc whose moved radius would vanish (a concave arc smaller than d) becomes two arcs of radius |d|
-    about its end points, meeting where those circles cross (as rs274 2.9 does, black-box)."""
+    about its end points, meeting where those circles cross; one without corners at its ends (a fillet)
+    vanishes (as rs274 2.9 does, black-box)."""
     out: list[tuple[Piece, Piece, bool]] = []
     for k, p in enumerate(pieces):
         try:
@@ -218,6 +225,8 @@ def _moved(pieces: list[Piece], d: float) -> list[tuple[Piece, Piece, bool]]:
         except ValueError:
             if k == 0 or k == len(pieces) - 1:
                 raise
+        if _smooth(pieces[k - 1], p) and _smooth(p, pieces[k + 1]):  # a fillet: it vanishes, its neighbours meet
+            continue
         a_end = _shift(pieces[k - 1], d).b
         b_start = _shift(pieces[k + 1], d).a
         t = _unit(_sub(p.b, p.a))
