@@ -168,11 +168,12 @@ class Rough:
         if k:  # a profile that starts going down: that first pocket is cut, down to its valley
             self._pocket(0, k - 1)
         env = self.pieces[k - 1].b[1] if k else self.first[1]
-        for p in self.pieces[k:]:
+        for n, p in enumerate(self.pieces[k:]):
             if p.b[1] < env - EPS or (p.b[1] <= env + EPS and p.a[1] < env - EPS):
                 continue
             start = p.a if p.a[1] >= env - EPS else at_u(p, env) or p.a
-            self.feed(start)
+            if not (n == 0 and k and p.c is not None and p.c == self.pieces[k - 1].c):
+                self.feed(start)  # (an arc that climbs out of the first pocket goes on as one move)
             self.along(cut_piece(p, start=start))
             env = max(env, p.b[1])
         self.feed((self.last[0], max(env, self.last[1])))  # a pocket at the end: bridged too
