@@ -193,6 +193,8 @@ TOOL_OFFSET_IN_COMP = _define("E0510", E, "G45-G48 tool offset while cutter comp
 ARC_REPAIRED = _define("W0511", W, "an arc's centre was moved to make its radii agree")
 DATA_INPUT = _define("E0512", E, "G10 with a table (L) or entry (P) that cncc does not know")
 OFFSET_NOT_IN_TABLE = _define("W0513", W, "an H or D number that the tool table does not have; 0 is used")
+COMP_REFUSES = _define("E0572", E, "a code (or a read of the current position) that the controller refuses "
+                       "while cutter radius compensation is on; the block is not run")
 COMP_NO_OFFSET = _define("W0560", W, "G41/G42 without an offset number (D): the controller runs it with radius 0")
 TRANSFORM_DEFAULT = _define("W0514", W, "a frame code without a value the manual leaves to a parameter; a default used")
 

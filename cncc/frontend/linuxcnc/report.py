@@ -25,6 +25,7 @@ from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING
 
 from cncc import diagnostics as dg
+from cncc.frontend.linuxcnc import comp_rules
 from cncc.frontend.linuxcnc.placement import Placement
 from cncc.frontend.linuxcnc.rotation import reexpress, rotate_frames, rotation_in_use
 from cncc.frontend.syntax import Word
@@ -47,6 +48,7 @@ from cncc.ir import (
     Plane,
     Rapid,
     SelectTool,
+    SetCutterComp,
     SetFeedMode,
     SetG92Offset,
     SetLocalOffset,
@@ -141,6 +143,11 @@ class Reporter:
                 it.emit_error(dg.COMP_PLANE_CHANGE, span, f"{c.name}: the plane cannot change while cutter "
                                                           "compensation is on")
                 return False
+        moves = any(w.letter in "XYZABCUVW" for w in words)
+        refused = comp_rules.refused(it, words, self._in_cycle(words) and (moves or self._cycle_code(words)))
+        if refused is not None:
+            it.emit_error(dg.COMP_REFUSES, span, refused)
+            return False
         rotary = next((w.letter for w in words if w.letter in "ABC"), None)
         if rotary is not None and self._in_cycle(words):
             it.emit_error(dg.CONTROLLER_REJECTS, span, f"Cannot put a{'n' if rotary == 'A' else ''} "
@@ -186,6 +193,10 @@ class Reporter:
         motion = any(w.letter == "G" and (c := self.it.dialect.code("G", round(w.value * 10))) is not None
                      and c.group in ("motion", "cycle") for w in words)
         return not motion and self.it.modal.cycle in _Q_CYCLES
+
+    def _cycle_code(self, words: tuple[Word, ...]) -> bool:
+        return any(w.letter == "G" and (c := self.it.dialect.code("G", round(w.value * 10))) is not None
+                   and c.group == "cycle" for w in words)
 
     def _in_cycle(self, words: tuple[Word, ...]) -> bool:
         """The block runs a canned cycle: a cycle code in it, or the cycle in force and no other motion code."""
@@ -380,8 +391,8 @@ _COMMENT_STAGE = {"inverse_time": 2, "per_min": 2, "per_rev": 2, "comp_off": 13,
                   "same_system": 15, "distance_absolute": 17, "distance_incremental": 17, "ijk_absolute": 17,
                   "ijk_incremental": 17, "retract_old_z": 18, "retract_r_plane": 18, "motion_none": 20}
 _MODE_STAGE: dict[type[Command], int] = {
-    SetFeedMode: 2, SetPlane: 11, SetUnits: 12, SetToolLength: 14, SetWorkSystem: 15, SetXyRotation: 15,
-    SetG92Offset: 19, SetLocalOffset: 19, WriteToolTable: 19}
+    SetFeedMode: 2, SetPlane: 11, SetUnits: 12, SetCutterComp: 13, SetToolLength: 14, SetWorkSystem: 15,
+    SetXyRotation: 15, SetG92Offset: 19, SetLocalOffset: 19, WriteToolTable: 19}
 
 
 def _stage(c: Command, known: dict[int, int] | None = None) -> int:
