@@ -257,7 +257,8 @@ class LinuxcncExecutor:
         if self.stopped:
             return
         if m in (70, 73):
-            fr.modal_saved, fr.auto_restore = save(self.it), m == 73 and fr.caller is not None
+            coolant = (self.reporter.mist, self.reporter.flood)
+            fr.modal_saved, fr.auto_restore = save(self.it, coolant), m == 73 and fr.caller is not None
         elif m == 71:
             fr.modal_saved, fr.auto_restore = None, False
         elif fr.modal_saved is None:
@@ -271,7 +272,7 @@ class LinuxcncExecutor:
 
         assert fr.modal_saved is not None
         start, end = (span.start, span.end) if span is not None else (0, 0)
-        for words in restore_blocks(self.it, fr.modal_saved):
+        for words in restore_blocks(self.it, fr.modal_saved, (self.reporter.mist, self.reporter.flood)):
             if words:
                 ws = tuple(Word(letter, value, True, start, end) for letter, value in words)
                 self._run_words(Block(self.line, start, end, ws), ws, ())

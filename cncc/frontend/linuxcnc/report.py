@@ -22,7 +22,7 @@ one executed block (``out[at:]``) so that the canon trace reads as ``rs274 -g``'
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, cast
 
 from cncc import diagnostics as dg
 from cncc.frontend.linuxcnc import comp_rules
@@ -237,9 +237,10 @@ class Reporter:
         block = sorted(out[at:end], key=lambda c: _stage(c, stages))  # stable: LinuxCNC's order of execution
         for stage, cmd in sorted(added, key=lambda sc: sc[0]):
             _place(block, 0, stage, cmd, stages)
-        out[at:end] = block
+        out[at:end] = _comments_in_place(block, before.frame)
         self._feed_modes(span, ops, out, at, words)
         self._tool_length(span, ops, out, at, words, before)
+        self._retain_g43(span, out, at)
         if "work" in ops:
             self._after_work_select(out, at)
         self._cycles(out, at)
@@ -300,6 +301,23 @@ class Reporter:
             _place(out, at, 14, SetToolLength(span, self.it.frame, self.it.frame.tool_length_mm), {})
         if not any(w.letter == "Z" for w in words):
             shift_z(self.it, before.tool_length_mm)
+
+    def _retain_g43(self, span: Span, out: list[Command], at: int) -> None:
+        """INI RETAIN_G43: an M6 while G43 is in force applies the new tool's length (LinuxCNC's doc: "turn on
+        G43 after loading the first tool, and then not worry about it"); unloading (T0 M6) ends G43.  The program
+        Z stays (rs274 2.9: the tool change is a move of its own)."""
+        it = self.it
+        if not it.dialect.option("retain_g43", False) or it.group_codes.get("length_comp", "G49") == "G49":
+            return
+        k = next((i for i in range(len(out) - 1, at - 1, -1) if isinstance(out[i], ToolChange)), None)
+        if k is None:
+            return
+        tool = cast(ToolChange, out[k]).tool
+        value = it.options.tool_lengths_mm.get(tool, 0.0) if tool else 0.0
+        it.set_frame(replace(it.frame, tool_length_mm=value, tool_length_index=tool))
+        out.insert(k + 1, SetToolLength(span, it.frame, value))
+        if not tool:
+            it.group_codes["length_comp"] = "G49"
 
     def _after_work_select(self, out: list[Command], at: int) -> None:
         """A work-system change reports the G92 offset and the XY rotation after the G5x offset."""
@@ -440,6 +458,18 @@ def _place(out: list[Command], at: int, stage: int, cmd: Command, known: dict[in
         known[id(cmd)] = stage
     out.insert(k, cmd)
     return k
+
+
+def _comments_in_place(block: list[Command], frame: Frame) -> list[Command]:
+    """A comment takes the frame in force where LinuxCNC makes it (the command before it; ``frame`` before
+    the block): a code run before it in cncc (a work system) does not move its offsets ahead of it."""
+    out: list[Command] = []
+    for c in block:
+        if isinstance(c, Comment | InterpreterReport) and c.frame is not frame:
+            c = replace(c, frame=frame)
+        out.append(c)
+        frame = c.frame
+    return out
 
 
 def _is_end(c: Command) -> bool:
