@@ -54,6 +54,14 @@ MESSAGES: dict[str, str] = {
     "'O.... endsub' or 'O.... return' must follow 'O.... sub' subroutine definition": "E0386",
     "Bug:  Reached convert_stop() from M99 as subprogram return": "E0386",
     "Cannot feed with zero spindle speed in feed per rev mode": "E0260",
+    "I word missing in absolute center arc": "E0250",
+    "J word missing in absolute center arc": "E0250",
+    "K word missing in absolute center arc": "E0250",
+    "Cannot use g53 with cutter radius comp": "E0572",
+    "Cannot use g28 or g30 with cutter radius comp": "E0572",
+    "Cannot change tools with cutter radius compensation on": "E0572",
+    "Cannot change coordinate systems with cutter radius compensation on": "E0572",
+    "Cannot read current position with cutter radius compensation on": "E0572",
 }
 
 _CALL = re.compile(r"^\s*(?:\d+\s+)?N\S*\s+([A-Z_0-9]+)\((.*)\)\s*$")

@@ -165,10 +165,38 @@ class Reporter:
                 not self._uses_q(words):
             it.emit_error(dg.CONTROLLER_REJECTS, span, _Q_WITHOUT_USER)
             return False
+        missing = self._absolute_centre_missing(words)
+        if missing:
+            it.emit_error(dg.CONTROLLER_REJECTS, span, f"{missing} word missing in absolute center arc")
+            return False
         if self._feeds_per_rev_without_speed(words):
             it.emit_error(dg.ZERO_FEED, span, "Cannot feed with zero spindle speed in feed per rev mode")
             return False
         return True
+
+    def _absolute_centre_missing(self, words: tuple[Word, ...]) -> str:
+        """G90.1: a centre-format arc needs both centre words of its plane (rs274: "J word missing in
+        absolute center arc"; in G91.1 a missing one is 0).  The missing letter, or ""."""
+        from cncc.frontend.rs274 import state
+
+        it = self.it
+        arc_absolute, plane, motion = state(it).arc_absolute, it.frame.plane, it.modal.motion
+        for w in words:
+            c = it.dialect.code("G", round(w.value * 10)) if w.letter == "G" else None
+            if c is None:
+                continue
+            if c.op in ("arc_absolute", "arc_incremental"):
+                arc_absolute = c.op == "arc_absolute"
+            elif c.op in ("plane_xy", "plane_zx", "plane_yz"):
+                plane = {"plane_xy": Plane.XY, "plane_zx": Plane.ZX, "plane_yz": Plane.YZ}[c.op]
+            elif c.group == "motion":
+                motion = c.op
+        letters = {w.letter for w in words}
+        if not arc_absolute or motion not in ("arc_cw", "arc_ccw") or "R" in letters:
+            return ""
+        pair = {Plane.XY: "IJ", Plane.ZX: "IK", Plane.YZ: "JK"}[plane]
+        given = [ch for ch in pair if ch in letters]
+        return next(ch for ch in pair if ch not in letters) if len(given) == 1 else ""
 
     def _feeds_per_rev_without_speed(self, words: tuple[Word, ...]) -> bool:
         """A feed move in G95 (the block's or the mode in force) with a feed rate but no spindle speed (S0 or
