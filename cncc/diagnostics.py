@@ -89,6 +89,8 @@ AFTER_END = _define("N0217", N, "blocks after the program end are not executed")
 DECIMAL_P_DWELL = _define("W0218", W, "G04 P takes integer milliseconds; the fraction is dropped")
 
 # --- E025x: dialect conformance (issue 11: grbl, LinuxCNC, SERIES 8, detection) ----------
+ONE_SPINDLE = _define("W0273", W, "a spindle number ($) other than 0 that the INI file allows: cncc models one "
+                      "spindle and runs the block's spindle codes on it")
 CONTROLLER_REJECTS = _define("E0250", E, "the controller rejects the block; the message gives its own error text")
 DIALECT_GUESSED = _define("N0251", N, "no -x given: the dialect was guessed from the file name and its contents")
 SOURCE_INCONSISTENT = _define("W0252", W, "the controller's manual contradicts itself here; a dialect option decides")
@@ -193,6 +195,8 @@ TOOL_OFFSET_IN_COMP = _define("E0510", E, "G45-G48 tool offset while cutter comp
 ARC_REPAIRED = _define("W0511", W, "an arc's centre was moved to make its radii agree")
 DATA_INPUT = _define("E0512", E, "G10 with a table (L) or entry (P) that cncc does not know")
 OFFSET_NOT_IN_TABLE = _define("W0513", W, "an H or D number that the tool table does not have; 0 is used")
+COMP_REFUSES = _define("E0572", E, "a code (or a read of the current position) that the controller refuses "
+                       "while cutter radius compensation is on; the block is not run")
 COMP_NO_OFFSET = _define("W0560", W, "G41/G42 without an offset number (D): the controller runs it with radius 0")
 TRANSFORM_DEFAULT = _define("W0514", W, "a frame code without a value the manual leaves to a parameter; a default used")
 
@@ -270,6 +274,8 @@ SETTING_ORIGIN = _define("N0907", N, "-v: where a setting came from (command lin
 BAD_PROJECT_CONFIG = _define("E0908", E, "a cncc.toml project file is malformed")
 NUMPY_WARNING = _define("W0909", W, "a numerical warning (overflow, invalid value) raised while computing")
 INI_UNREADABLE = _define("E0983", E, "the --ini file cannot be read")
+INI_BAD_VALUE = _define("W0972", W, "an --ini value that LinuxCNC refuses (out of its range, not a number); "
+                        "the dialect's default is kept, as LinuxCNC keeps its own")
 INI_BAD_LINE = _define("E0984", E, "a line of the --ini file is not a section, a NAME = VALUE line or a comment")
 BAD_PASS_SPEC = _define("E0991", E, "-p, --print-after: an unknown pass, an unknown option or a bad value")
 IR_INVARIANT = _define("E0992", E, "--verify-each: a pass broke an IR invariant (continuity, spans, machine frame)")

@@ -251,6 +251,19 @@ def load_ini(opts: Options, sink: DiagnosticSink, sources: SourceMap | None) -> 
     return read_ini(opts.ini_file, sources if sources is not None else SourceMap(), sink)
 
 
+def ini_dialect(dialect: Dialect, ini: Any, opts: Options, sink: DiagnosticSink, first: bool = True) -> Dialect:
+    """The dialect with the options the --ini file sets (its ``[ini]`` table; -f options win); its bad
+    values are reported for the ``first`` file only."""
+    table = dialect.raw.get("ini")
+    if ini is None or not table:
+        return dialect
+    from cncc.diagnostics import DiagnosticSink as Sink
+    from cncc.inifile import dialect_options
+
+    got = dialect_options(ini, table, opts.dialect_options, sink if first else Sink())
+    return dialect.with_options(got) if got else dialect
+
+
 def macro_options(opts: Options, sink: DiagnosticSink, sources: SourceMap | None,
                   deps: list[str] | None = None, ini: Any = None) -> Any:
     """The macro executor's options: -D presets, -I folders, --max-steps, --io, --write-dir."""
@@ -511,6 +524,7 @@ def compile_files(opts: Options, stdin: TextIO | None = None) -> Result:
     manager = PassManager(ins)
     chunks: list[str] = []
     inis: dict[str, Any] = {}
+    ini_seen: dict[str, bool] = {}  # its bad values reported once
     base_dialect, base_machine, base_opts = dialect, machine, opts
     for path in base_opts.inputs or ["-"]:
         if sink.limit_reached:
@@ -526,6 +540,8 @@ def compile_files(opts: Options, stdin: TextIO | None = None) -> Result:
         if opts.ini_file:  # read once per run (its problems reported once)
             ini = inis[opts.ini_file] if opts.ini_file in inis else inis.setdefault(
                 opts.ini_file, load_ini(opts, sink, sources))
+            dialect = ini_dialect(dialect, ini, opts, sink, first=not ini_seen.get(opts.ini_file, False))
+            ini_seen[opts.ini_file] = True
         result.dialects[src.name] = dialect.name
         ins.unit = src.name
         deps = result.deps.setdefault(src.name, [])

@@ -15,17 +15,24 @@ file is E0983.
   case-insensitive; a value that is not a number is not a parameter);
 - ``[RS274NGC] DISABLE_FANUC_STYLE_SUB``: M98/M99 subprograms are errors.
 
-Not read yet: ``CENTER_ARC_RADIUS_TOLERANCE_MM``/``_INCH`` (rs274 2.9 accepts 0.001 to its
-default 0.0283 mm, i.e. only a stricter check, which cncc's arc check does not take below
-its default), ``[TRAJ] SPINDLES`` (more than one spindle for ``$``), ``RETAIN_G43``,
-``OWORD_NARGS``, ``NO_DOWNCASE_OWORD``, ``FEATURES``, ``PARAMETER_FILE``, remaps.
+- the keys of the dialect's ``[ini]`` table (:func:`dialect_options`): each sets a dialect
+  option, within the range LinuxCNC accepts (``CENTER_ARC_RADIUS_TOLERANCE_MM``/``_INCH``,
+  ``RETAIN_G43``, ``[TRAJ] SPINDLES``); a value outside it is W0972 and the default stays, as
+  rs274 warns "invalid [SECTION]NAME in INI file" and keeps its own.  An option given with
+  ``-f`` wins over the INI file.
+
+Other keys are ignored, as LinuxCNC ignores keys it does not know; not modelled: ``OWORD_NARGS``,
+``NO_DOWNCASE_OWORD``, ``OWORD_WARNONLY``, ``PARAMETER_FILE``, ``USER_M_PATH``, remaps.
 """
 
 from __future__ import annotations
 
+import math
 import os
 import re
+from collections.abc import Mapping
 from dataclasses import dataclass, field
+from typing import Any
 
 from cncc import diagnostics as dg
 from cncc.diagnostics import DiagnosticSink
@@ -104,3 +111,45 @@ def read_ini(path: str, sources: SourceMap, sink: DiagnosticSink) -> IniSettings
         else:
             section.setdefault(e.group(1).upper(), e.group(2))
     return ini
+
+
+def dialect_options(ini: IniSettings, table: Mapping[str, Any], explicit: Mapping[str, Any],
+                    sink: DiagnosticSink) -> dict[str, Any]:
+    """The dialect options ``ini`` sets: ``table`` is the dialect's ``[ini]`` (``"SECTION.NAME" =
+    {option, kind = "number"|"flag"|"count", min, max}``); options in ``explicit`` (``-f``) are kept."""
+    out: dict[str, Any] = {}
+    for key, spec in table.items():
+        section, _, name = str(key).partition(".")
+        raw = ini.get(section, name)
+        option = str(spec["option"])
+        if raw is None or option in explicit:
+            continue
+        value = _value(raw, spec)
+        if value is None:
+            sink.emit(dg.INI_BAD_VALUE, NO_SPAN, f"--ini {ini.path}: invalid [{section}]{name} = {raw} "
+                      f"(LinuxCNC accepts {_accepted(spec)}); the default is kept")
+            continue
+        out[option] = value
+    return out
+
+
+def _value(raw: str, spec: Mapping[str, Any]) -> Any:
+    kind = str(spec.get("kind", "number"))
+    if kind == "flag":
+        return raw.strip().lower() in ("1", "true", "yes", "on") or (bool(_NUMBER.match(raw)) and float(raw) != 0)
+    if not _NUMBER.match(raw.strip()):
+        return None
+    v = float(raw)
+    if kind == "count":
+        v = float(int(v))
+    lo, hi = float(spec.get("min", -math.inf)), float(spec.get("max", math.inf))
+    if not lo <= v <= hi:
+        return None
+    return int(v) if kind == "count" else v
+
+
+def _accepted(spec: Mapping[str, Any]) -> str:
+    lo, hi = spec.get("min"), spec.get("max")
+    if lo is not None and hi is not None:
+        return f"{lo} to {hi}"
+    return f"at least {lo}" if lo is not None else "a number"

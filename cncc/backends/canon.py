@@ -113,10 +113,15 @@ def canon_lines(cmds: Iterable[Command], *, initial_frame: Frame | None = None,
     last_g5x, last_g92 = g5x, g92
     skip = 0  # commands folded into one call (RIGID_TAP, NURBS_FEED) that are not written
     offsets: dict[int, tuple[Frame, tuple[str, str]]] = {}  # frames are shared: format once each
+    coolant = _CoolantTrace(fmt)
     for c in cmds:
         if skip:
             skip -= 1
             continue
+        if coolant.active:
+            yield from coolant.before(c)
+            if coolant.hold(c):
+                continue
         frame = c.frame
         if not isinstance(c, MODE_TYPES):
             entry = offsets.get(id(frame))
@@ -147,7 +152,41 @@ def canon_lines(cmds: Iterable[Command], *, initial_frame: Frame | None = None,
             case _:
                 key, fields = _other(c)
                 yield from _lines(fmt, key, **fields)
+    yield from coolant.before(None)
     yield from _lines(fmt, "end_of_trace")
+
+
+class _CoolantTrace:
+    """Where the dialect words them (``mist_off``/``flood_off`` in ``[canon]``), the coolant-off of a
+    program end prints only the coolants that are on, as LinuxCNC's M2/M30 does (M9 prints both):
+    a coolant off just before the program end is held until that end is seen."""
+
+    def __init__(self, fmt: CanonFormat) -> None:
+        self.fmt = fmt
+        self.active = fmt.has("mist_off") and fmt.has("flood_off")
+        self.mist = self.flood = False
+        self.held: Coolant | None = None
+
+    def hold(self, c: Command) -> bool:
+        if not isinstance(c, Coolant):
+            return False
+        if c.state is CoolantState.OFF:
+            self.held = c
+            return True
+        self.mist, self.flood = self.mist or c.state is CoolantState.MIST, self.flood or c.state is CoolantState.FLOOD
+        return False
+
+    def before(self, c: Command | None) -> Iterator[str]:
+        if self.held is None:
+            return
+        self.held = None
+        if isinstance(c, Stop) and c.kind in (StopKind.PROGRAM_END, StopKind.END_REWIND):
+            keys = [k for k, on in (("mist_off", self.mist), ("flood_off", self.flood)) if on]
+        else:
+            keys = ["coolant_off"]
+        self.mist = self.flood = False
+        for k in keys:
+            yield from _lines(self.fmt, k)
 
 
 def _report(c: InterpreterReport, fmt: CanonFormat) -> Iterator[str]:

@@ -30,6 +30,8 @@ DEFAULTS: dict[str, str | list[str]] = {
     "tool_change": "CHANGE_TOOL()",
     "flood_on": "FLOOD_ON()",
     "mist_on": "MIST_ON()",
+    "mist_off": [],  # a dialect that turns off only the coolants that are on at a program end words these two
+    "flood_off": [],
     "coolant_off": ["FLOOD_OFF()", "MIST_OFF()"],
     "tool_length_offset": "USE_TOOL_LENGTH_OFFSET(0.0000, 0.0000, {z}, 0.0000, 0.0000, 0.0000, 0.0000, 0.0000, "
                           "0.0000)",

@@ -80,7 +80,11 @@ def spindle_word(it: Interpreter, ctx: BlockContext) -> None:
         _fail(it, ctx, "spindle_word_unused", _NO_USER)
         return
     n = int(w.value)  # rs274 truncates
-    if n in (0, -1):
+    spindles = int(it.dialect.option("spindles", 1))  # [TRAJ] SPINDLES of an INI file
+    if n == -1 or 0 <= n < spindles:
+        if n > 0:
+            it.sink.emit(dg.ONE_SPINDLE, it.word_span(w), f"${n}: cncc models one spindle; this block's spindle "
+                         "codes run on it (LinuxCNC would address spindle " + str(n) + ")")
         return
     if "S" in ctx.words:
         _fail(it, ctx, "spindle_number_s", "Invalid spindle ($) number in Spindle speed command")

@@ -40,8 +40,10 @@ class ArcCheck(Pass):
     @classmethod
     def for_dialect(cls, dialect: Dialect, repair: bool = False) -> ArcCheck:
         """The check with the dialect's tolerances (``arc_radius_tolerance_mm``/``_rel``/``_inch``,
-        ``arc_radius_error_factor``); the absolute one is never below the default."""
-        return cls(abs_tol_mm=max(float(dialect.option("arc_radius_tolerance_mm", cls.abs_tol_mm)), cls.abs_tol_mm),
+        ``arc_radius_error_factor``); the absolute one is never below the default, or below
+        ``arc_radius_tolerance_floor_mm`` where the dialect gives one (LinuxCNC's INI file may lower it)."""
+        floor = float(dialect.option("arc_radius_tolerance_floor_mm", cls.abs_tol_mm))
+        return cls(abs_tol_mm=max(float(dialect.option("arc_radius_tolerance_mm", cls.abs_tol_mm)), floor),
                    rel_tol=float(dialect.option("arc_radius_tolerance_rel", cls.rel_tol)), repair=repair,
                    abs_tol_inch_mm=float(dialect.option("arc_radius_tolerance_inch", 0.0)) * MM_PER_INCH,
                    max_abs_factor=float(dialect.option("arc_radius_error_factor", 0.0)))

@@ -34,12 +34,36 @@ from dataclasses import dataclass, field, replace
 from typing import ClassVar
 
 from cncc import diagnostics as dg
-from cncc.ir import Arc, Command, CompSide, Frame, Linear, OriginKind, Rapid, SetCutterComp, Stop, Vec6
+from cncc.ir import (
+    Arc,
+    Command,
+    Comment,
+    CompSide,
+    Coolant,
+    Dwell,
+    FeedRate,
+    Frame,
+    InterpreterReport,
+    Linear,
+    OriginKind,
+    Rapid,
+    SetCutterComp,
+    SetFeedMode,
+    SetSpindleMode,
+    SetUnits,
+    Spindle,
+    SpindleSpeed,
+    Stop,
+    Vec6,
+)
 from cncc.ir.frame import add_offsets, sub_offsets
 from cncc.passes import Pass, PassContext, register
 from cncc.passes.comp_geometry import Pt
 
 Motion = Rapid | Linear | Arc
+# The calls rs274 queues with the moves (its enqueue_* canon calls): while moves wait in the queue
+# these wait after them, so the trace keeps rs274's order (a feed rate after the move it follows).
+HELD = (FeedRate, Dwell, Coolant, Spindle, SpindleSpeed, SetSpindleMode, SetFeedMode, Comment, InterpreterReport)
 SMALL = 0.05  # rs274's TOLERANCE_CONCAVE_CORNER (radians)
 HALF_PI = math.pi / 2
 
@@ -149,7 +173,8 @@ class _State:
     arc_not_allowed: bool = False
     queue: list[_Queued] = field(default_factory=list)
     endpoint: Pt | None = None  # start of the queued element (the reversal check)
-    frames: dict[int, Frame] = field(default_factory=dict)
+    frames: dict[int, tuple[Frame, Frame]] = field(default_factory=dict)
+    held: list[tuple[int, Command]] = field(default_factory=list)  # (after queue[i], a HELD call)
 
     # ---- entry
     def feed(self, c: Command) -> Iterator[Command]:
@@ -162,6 +187,11 @@ class _State:
                 yield from self.flush()
                 if isinstance(c, SetCutterComp) and c.frame.comp_side is not CompSide.OFF and not self.on:
                     self.first = True
+            elif self.queue and isinstance(c, HELD):
+                self.held.append((len(self.queue) - 1, c))
+                return
+            elif self.queue and isinstance(c, SetUnits):  # rs274 prints the queued moves in the new units
+                self._reunit(c.frame)
             yield c if self._frame(c.frame) is c.frame else replace(c, frame=self._frame(c.frame))
             return
         f = c.frame
@@ -194,17 +224,25 @@ class _State:
 
     def flush(self) -> Iterator[Command]:
         q, self.queue = self.queue, []
-        for item in q:
+        held, self.held = self.held, []
+        for k, item in enumerate(q):
             yield self._out(item)
+            for _, c in (h for h in held if h[0] == k):
+                yield c if self._frame(c.frame) is c.frame else replace(c, frame=self._frame(c.frame))
+
+    def _reunit(self, f: Frame) -> None:
+        for q in self.queue:
+            if q.cmd.frame.units is not f.units:
+                q.cmd = replace(q.cmd, frame=replace(q.cmd.frame, units=f.units))
 
     # ---- helpers
     def _frame(self, f: Frame) -> Frame:
         got = self.frames.get(id(f))
-        if got is None:
-            got = f if f.comp_side is CompSide.OFF and f.comp_radius_mm == 0.0 else replace(
-                f, comp_side=CompSide.OFF, comp_radius_mm=0.0)
+        if got is None or got[0] is not f:  # (the key frame is kept: an id is unique only while it lives)
+            got = (f, f if f.comp_side is CompSide.OFF and f.comp_radius_mm == 0.0 else replace(
+                f, comp_side=CompSide.OFF, comp_radius_mm=0.0))
             self.frames[id(f)] = got
-        return got
+        return got[1]
 
     def _error(self, c: Motion, text: str, code: str = dg.CONTROLLER_REJECTS) -> None:
         self.ctx.sink.emit(code, c.span, text)

@@ -2,8 +2,8 @@
 
 G52 and G92 on the same offset (with G92.1/.2/.3), G43 and G41 without H/D (the loaded
 tool), G0 or G1 with G80 in one block, an A/B/C word in a canned-cycle block, MOD with
-negative operands, an assignment without brackets, and the end of a program: M2/M30, a
-closing ``%`` (text after it), or no end at all.
+negative operands, an assignment without brackets, a G90.1 arc missing a centre word, and
+the end of a program: M2/M30, a closing ``%`` (text after it), or no end at all.
 """
 
 from __future__ import annotations
@@ -31,6 +31,13 @@ def _piece(rng: random.Random) -> list[str]:
         first = rng.random() < 0.5
         cyc = f"G0 Z5\nG81 X1 Y1 Z-1 R1 F100{f' {letter}3' if first else ''}"
         return [cyc, f"X2{'' if first else f' {letter}3'}", "G80"]
+    if c < 0.75:  # G90.1: both centre words of the plane are needed (in G91.1 a missing one is 0)
+        plane, pair = rng.choice([("G17", "IJ"), ("G18", "IK"), ("G19", "JK")])
+        words = {"I": "I2", "J": "J0", "K": "K0"} if plane != "G19" else {"J": "J2", "K": "K0", "I": "I0"}
+        drop = rng.choice(pair + "-")
+        centre = " ".join(words[ch] for ch in pair if ch != drop)
+        end = {"G17": "X4 Y0", "G18": "X4 Z0", "G19": "Y4 Z0"}[plane]
+        return [f"G0 X0 Y0 Z0 F100 {plane}", f"{rng.choice(['G90.1', 'G91.1'])} G2 {end} {centre}", "G91.1 G17"]
     if c < 0.9:
         a, b = rng.choice([7, -7, 7.5, -2]), rng.choice([3, -3, 2.5, -4])
         return [f"#1 = [{a} MOD {b}]", "G0 X#1"]

@@ -646,6 +646,24 @@ def semantics(rng: random.Random) -> Program:
 FEATURES["semantics"] = semantics
 
 
+def comp_rules(rng: random.Random) -> Program:
+    from tests.oracle.gen_comp_rules import comp_rules as generated
+
+    return generated(rng)
+
+
+FEATURES["comp_rules"] = comp_rules
+
+
+def ini_keys(rng: random.Random) -> Program:
+    from tests.oracle.gen_ini_keys import ini_keys as generated
+
+    return generated(rng)
+
+
+FEATURES["ini_keys"] = ini_keys
+
+
 def generate(feature: str, count: int, seed: int = 0) -> list[Program]:
     """``count`` programs of ``feature``, the same ones for the same seed."""
     gen = FEATURES[feature]

@@ -118,6 +118,7 @@ def _modal_change(rng: random.Random, k: float) -> str:
         rng.choice(["G61", "G61.1", "G64", f"G64 P{num(rng.uniform(0, 0.5) * k)}",
                     f"G64 P{num(rng.uniform(0, 0.5) * k)} Q{num(rng.uniform(0, 0.5) * k)}"]),
         rng.choice(["G90", "G91"]), rng.choice(["G90.1", "G91.1"]), rng.choice(["G98", "G99"]),
+        rng.choice(["M7", "M8", "M9"]), rng.choice(["G7", "G8"]),  # coolant and G7/G8 are restored too
     ])
 
 

@@ -40,6 +40,7 @@ class Parameters:
     system: Callable[[str], float | None] = lambda name: None  # #<_x> ... from the interpreter
     system_number: Callable[[int], float | None] = lambda n: None  # #5161 ... #5428 from the interpreter
     system_write: Callable[[int, float], bool] = lambda n, v: False  # ... and into its tables
+    read_refused: Callable[[int], str | None] = lambda n: None  # rs274's text when an expression may not read #n
     # a system parameter the program wrote: (its value, the interpreter's value then)
     system_written: dict[int, tuple[float, float]] = field(default_factory=dict)
 
@@ -91,7 +92,11 @@ class Evaluator(evaluate.Evaluator):
             if got is None:
                 raise EvalError(dg.NAMED_UNDEFINED, f"#<{v.name}> is read before it was set", v.start, v.end, v.name)
             return got
-        return self.p.read_number(self.var_number(v))
+        n = self.var_number(v)
+        refused = self.p.read_refused(n)
+        if refused is not None:
+            raise EvalError(dg.COMP_REFUSES, refused, v.start, v.end)
+        return self.p.read_number(n)
 
     def var_number(self, v: Var) -> int:
         assert v.index is not None

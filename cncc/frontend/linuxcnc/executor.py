@@ -22,6 +22,7 @@ from cncc.dialects import Dialect
 from cncc.dialects.errors import ControllerSink, ControllerTexts
 from cncc.frontend.interp import Interpreter
 from cncc.frontend.linuxcnc import g76 as _g76  # noqa: F401  (registers G76)
+from cncc.frontend.linuxcnc.comp_rules import position_read_refused, without_ignored
 from cncc.frontend.linuxcnc.control import run_oword
 from cncc.frontend.linuxcnc.evaluate import EvalError, Evaluator, Parameters, Scope
 from cncc.frontend.linuxcnc.fastblock import run_plain
@@ -51,7 +52,8 @@ class LinuxcncExecutor:
         self.parser = parser
         self.system = SystemParameters(it, lambda: len(self.stack) - 1)
         self.params = Parameters(system=self._system, system_number=self.system.number,
-                                 system_write=self.system.write)
+                                 system_write=self.system.write,
+                                 read_refused=lambda n: position_read_refused(self.it, n))
         self.ev = Evaluator(self.params)
         self.include_dirs = include_dirs
         self.max_steps = max_steps
@@ -236,6 +238,7 @@ class LinuxcncExecutor:
                 self.params.write_name(st.target.name, 0.0)
 
     def _run_words(self, block: Block, words: tuple[Word, ...], comments: tuple[CommentItem, ...]) -> None:
+        words = without_ignored(self.it, words)
         if not words and not comments:
             return
         nc = Block(block.line, block.start, block.end, words, comments, (), 0, block.percent)
@@ -254,7 +257,8 @@ class LinuxcncExecutor:
         if self.stopped:
             return
         if m in (70, 73):
-            fr.modal_saved, fr.auto_restore = save(self.it), m == 73 and fr.caller is not None
+            coolant = (self.reporter.mist, self.reporter.flood)
+            fr.modal_saved, fr.auto_restore = save(self.it, coolant), m == 73 and fr.caller is not None
         elif m == 71:
             fr.modal_saved, fr.auto_restore = None, False
         elif fr.modal_saved is None:
@@ -268,7 +272,7 @@ class LinuxcncExecutor:
 
         assert fr.modal_saved is not None
         start, end = (span.start, span.end) if span is not None else (0, 0)
-        for words in restore_blocks(self.it, fr.modal_saved):
+        for words in restore_blocks(self.it, fr.modal_saved, (self.reporter.mist, self.reporter.flood)):
             if words:
                 ws = tuple(Word(letter, value, True, start, end) for letter, value in words)
                 self._run_words(Block(self.line, start, end, ws), ws, ())
@@ -323,8 +327,16 @@ class LinuxcncExecutor:
     def _read_number(self, n: int) -> float:
         from cncc.frontend.syntax import Num
 
-        value = self.ev.read(Var(Num(float(n), False, 0, 0), 0, 0))
+        value = self._message_read(Var(Num(float(n), False, 0, 0), 0, 0))
         return 0.0 if value is None else value  # LinuxCNC's reads are never vacant
+
+    def _message_read(self, v: Var) -> float | None:
+        """A parameter read of a message: rs274 lets DEBUG/PRINT read what an expression may not (#5420 in comp)."""
+        refused, self.params.read_refused = self.params.read_refused, lambda n: None
+        try:
+            return self.ev.read(v)
+        finally:
+            self.params.read_refused = refused
 
     def _format_param(self, text: str, pos: int) -> str:
         from cncc.frontend.linuxcnc.builder import param_name
@@ -334,7 +346,7 @@ class LinuxcncExecutor:
             got = self.params.lookup(param_name(text))
             return "######" if got is None else f"{got:.6f}"
         n = int(text[1:])
-        return f"{self.ev.read(Var(Num(float(n), False, pos, pos), pos, pos)):.6f}"
+        return f"{self._message_read(Var(Num(float(n), False, pos, pos), pos, pos)):.6f}"
 
     # ---- subroutine files
     def load_sub(self, name: str) -> FlowIndex | None:

@@ -22,9 +22,10 @@ one executed block (``out[at:]``) so that the canon trace reads as ``rs274 -g``'
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, cast
 
 from cncc import diagnostics as dg
+from cncc.frontend.linuxcnc import comp_rules
 from cncc.frontend.linuxcnc.placement import Placement
 from cncc.frontend.linuxcnc.rotation import reexpress, rotate_frames, rotation_in_use
 from cncc.frontend.syntax import Word
@@ -47,6 +48,7 @@ from cncc.ir import (
     Plane,
     Rapid,
     SelectTool,
+    SetCutterComp,
     SetFeedMode,
     SetG92Offset,
     SetLocalOffset,
@@ -141,6 +143,11 @@ class Reporter:
                 it.emit_error(dg.COMP_PLANE_CHANGE, span, f"{c.name}: the plane cannot change while cutter "
                                                           "compensation is on")
                 return False
+        moves = any(w.letter in "XYZABCUVW" for w in words)
+        refused = comp_rules.refused(it, words, self._in_cycle(words) and (moves or self._cycle_code(words)))
+        if refused is not None:
+            it.emit_error(dg.COMP_REFUSES, span, refused)
+            return False
         rotary = next((w.letter for w in words if w.letter in "ABC"), None)
         if rotary is not None and self._in_cycle(words):
             it.emit_error(dg.CONTROLLER_REJECTS, span, f"Cannot put a{'n' if rotary == 'A' else ''} "
@@ -158,10 +165,38 @@ class Reporter:
                 not self._uses_q(words):
             it.emit_error(dg.CONTROLLER_REJECTS, span, _Q_WITHOUT_USER)
             return False
+        missing = self._absolute_centre_missing(words)
+        if missing:
+            it.emit_error(dg.CONTROLLER_REJECTS, span, f"{missing} word missing in absolute center arc")
+            return False
         if self._feeds_per_rev_without_speed(words):
             it.emit_error(dg.ZERO_FEED, span, "Cannot feed with zero spindle speed in feed per rev mode")
             return False
         return True
+
+    def _absolute_centre_missing(self, words: tuple[Word, ...]) -> str:
+        """G90.1: a centre-format arc needs both centre words of its plane (rs274: "J word missing in
+        absolute center arc"; in G91.1 a missing one is 0).  The missing letter, or ""."""
+        from cncc.frontend.rs274 import state
+
+        it = self.it
+        arc_absolute, plane, motion = state(it).arc_absolute, it.frame.plane, it.modal.motion
+        for w in words:
+            c = it.dialect.code("G", round(w.value * 10)) if w.letter == "G" else None
+            if c is None:
+                continue
+            if c.op in ("arc_absolute", "arc_incremental"):
+                arc_absolute = c.op == "arc_absolute"
+            elif c.op in ("plane_xy", "plane_zx", "plane_yz"):
+                plane = {"plane_xy": Plane.XY, "plane_zx": Plane.ZX, "plane_yz": Plane.YZ}[c.op]
+            elif c.group == "motion":
+                motion = c.op
+        letters = {w.letter for w in words}
+        if not arc_absolute or motion not in ("arc_cw", "arc_ccw") or "R" in letters:
+            return ""
+        pair = {Plane.XY: "IJ", Plane.ZX: "IK", Plane.YZ: "JK"}[plane]
+        given = [ch for ch in pair if ch in letters]
+        return next(ch for ch in pair if ch not in letters) if len(given) == 1 else ""
 
     def _feeds_per_rev_without_speed(self, words: tuple[Word, ...]) -> bool:
         """A feed move in G95 (the block's or the mode in force) with a feed rate but no spindle speed (S0 or
@@ -186,6 +221,10 @@ class Reporter:
         motion = any(w.letter == "G" and (c := self.it.dialect.code("G", round(w.value * 10))) is not None
                      and c.group in ("motion", "cycle") for w in words)
         return not motion and self.it.modal.cycle in _Q_CYCLES
+
+    def _cycle_code(self, words: tuple[Word, ...]) -> bool:
+        return any(w.letter == "G" and (c := self.it.dialect.code("G", round(w.value * 10))) is not None
+                   and c.group == "cycle" for w in words)
 
     def _in_cycle(self, words: tuple[Word, ...]) -> bool:
         """The block runs a canned cycle: a cycle code in it, or the cycle in force and no other motion code."""
@@ -226,9 +265,10 @@ class Reporter:
         block = sorted(out[at:end], key=lambda c: _stage(c, stages))  # stable: LinuxCNC's order of execution
         for stage, cmd in sorted(added, key=lambda sc: sc[0]):
             _place(block, 0, stage, cmd, stages)
-        out[at:end] = block
+        out[at:end] = _comments_in_place(block, before.frame)
         self._feed_modes(span, ops, out, at, words)
         self._tool_length(span, ops, out, at, words, before)
+        self._retain_g43(span, out, at)
         if "work" in ops:
             self._after_work_select(out, at)
         self._cycles(out, at)
@@ -289,6 +329,23 @@ class Reporter:
             _place(out, at, 14, SetToolLength(span, self.it.frame, self.it.frame.tool_length_mm), {})
         if not any(w.letter == "Z" for w in words):
             shift_z(self.it, before.tool_length_mm)
+
+    def _retain_g43(self, span: Span, out: list[Command], at: int) -> None:
+        """INI RETAIN_G43: an M6 while G43 is in force applies the new tool's length (LinuxCNC's doc: "turn on
+        G43 after loading the first tool, and then not worry about it"); unloading (T0 M6) ends G43.  The program
+        Z stays (rs274 2.9: the tool change is a move of its own)."""
+        it = self.it
+        if not it.dialect.option("retain_g43", False) or it.group_codes.get("length_comp", "G49") == "G49":
+            return
+        k = next((i for i in range(len(out) - 1, at - 1, -1) if isinstance(out[i], ToolChange)), None)
+        if k is None:
+            return
+        tool = cast(ToolChange, out[k]).tool
+        value = it.options.tool_lengths_mm.get(tool, 0.0) if tool else 0.0
+        it.set_frame(replace(it.frame, tool_length_mm=value, tool_length_index=tool))
+        out.insert(k + 1, SetToolLength(span, it.frame, value))
+        if not tool:
+            it.group_codes["length_comp"] = "G49"
 
     def _after_work_select(self, out: list[Command], at: int) -> None:
         """A work-system change reports the G92 offset and the XY rotation after the G5x offset."""
@@ -380,8 +437,8 @@ _COMMENT_STAGE = {"inverse_time": 2, "per_min": 2, "per_rev": 2, "comp_off": 13,
                   "same_system": 15, "distance_absolute": 17, "distance_incremental": 17, "ijk_absolute": 17,
                   "ijk_incremental": 17, "retract_old_z": 18, "retract_r_plane": 18, "motion_none": 20}
 _MODE_STAGE: dict[type[Command], int] = {
-    SetFeedMode: 2, SetPlane: 11, SetUnits: 12, SetToolLength: 14, SetWorkSystem: 15, SetXyRotation: 15,
-    SetG92Offset: 19, SetLocalOffset: 19, WriteToolTable: 19}
+    SetFeedMode: 2, SetPlane: 11, SetUnits: 12, SetCutterComp: 13, SetToolLength: 14, SetWorkSystem: 15,
+    SetXyRotation: 15, SetG92Offset: 19, SetLocalOffset: 19, WriteToolTable: 19}
 
 
 def _stage(c: Command, known: dict[int, int] | None = None) -> int:
@@ -429,6 +486,18 @@ def _place(out: list[Command], at: int, stage: int, cmd: Command, known: dict[in
         known[id(cmd)] = stage
     out.insert(k, cmd)
     return k
+
+
+def _comments_in_place(block: list[Command], frame: Frame) -> list[Command]:
+    """A comment takes the frame in force where LinuxCNC makes it (the command before it; ``frame`` before
+    the block): a code run before it in cncc (a work system) does not move its offsets ahead of it."""
+    out: list[Command] = []
+    for c in block:
+        if isinstance(c, Comment | InterpreterReport) and c.frame is not frame:
+            c = replace(c, frame=frame)
+        out.append(c)
+        frame = c.frame
+    return out
 
 
 def _is_end(c: Command) -> bool:
