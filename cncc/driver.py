@@ -533,6 +533,8 @@ def compile_files(opts: Options, stdin: TextIO | None = None) -> Result:
             for _ in until_limit(front_end(src, dialect, machine, opts, sink, sources, deps, ini), sink):
                 pass
             continue
+        if opts.syntax_only and fast_syntax_only(src, dialect, machine, opts, sink, sources, deps, ini, manager):
+            continue
         cmds = path_passes(until_limit(front_end(src, dialect, machine, opts, sink, sources, deps, ini), sink),
                            dialect, machine, opts, sink, manager)
         if opts.expand:
@@ -548,6 +550,44 @@ def compile_files(opts: Options, stdin: TextIO | None = None) -> Result:
     result.output = "".join(chunks)
     result.pass_report = pass_report(ins, opts, sink)
     return result
+
+
+def fast_syntax_only(src: SourceFile, dialect: Dialect, machine: MachineModel, opts: Options, sink: DiagnosticSink,
+                     sources: SourceMap, deps: list[str], ini: Any, manager: Any) -> bool:
+    """-fsyntax-only with the default passes on a fast-path dialect: the front end's sparse stream of
+    cncc/frontend/syntax_fast.py (plain blocks decided with arrays) through the path passes, the
+    same diagnostics as the whole stream.  False (nothing done) when it does not apply; a program
+    that is not straight-line after all starts again on the front end, its diagnostics forgotten."""
+    if (opts.expand or opts.passes or opts.verify_each or opts.print_after or opts.time_passes
+            or opts.emit in MACHINE_EMITS or opts.emit == "gcode"):
+        return False
+    from cncc.frontend.syntax_fast import ArcLimits, NotStraight, applies, lower_for_check
+
+    if not applies(dialect):
+        return False
+    from cncc.frontend import lower
+    from cncc.frontend.tape import before_tape_end
+    from cncc.pipeline.builder import path_options
+
+    if ini is None and opts.ini_file:
+        ini = load_ini(opts, sink, sources)
+    iopts = interp_options(opts, machine, sink)
+    mopts = macro_options(opts, sink, sources, deps, ini)
+    a = path_options(pipeline_config(opts), dialect)["arc-check"]
+    limits = ArcLimits(a["abs_tol_mm"], a["rel_tol"], a["abs_tol_inch_mm"], a["max_abs_factor"])
+    checked = before_tape_end(src) if dialect.raw.get("tape_end") else src
+    mark = (len(sink.items), sink.dropped, sink.suppressed, sink.errors_kept, sink.over_limit)
+    try:
+        for _ in path_passes(until_limit(lower_for_check(checked, dialect, sink, iopts, limits), sink),
+                             dialect, machine, opts, sink, manager):
+            pass
+    except NotStraight:
+        del sink.items[mark[0]:]
+        sink.dropped, sink.suppressed, sink.errors_kept, sink.over_limit = mark[1:]
+        for _ in path_passes(until_limit(lower(src, dialect, sink, iopts, mopts), sink),
+                             dialect, machine, opts, sink, manager):
+            pass
+    return True
 
 
 def _file_setup(base_opts: Options, base_dialect: Dialect, base_machine: MachineModel, path: str,

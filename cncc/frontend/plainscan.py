@@ -1,0 +1,195 @@
+"""A vectorised scanner for plain CAM blocks: which lines of a byte buffer are plain, and their words.
+
+The fast path (:mod:`cncc.frontend.fastpath`) reads a plain motion block with the regular
+expression ``CAM_LINE``: ``N? G0-3? X? Y? Z? I? J? F?`` in that order, each letter directly
+followed by its number (``[-+]?[\\d.]{1,12}`` for the axes and centres, ``[\\d.]{1,12}`` for F,
+``\\d+`` for N, ``0*[0-3]`` for G), spaces between words, an optional ``;`` and ``\\r`` at the
+end.  :func:`scan_chunk` decides the same thing for every line of a chunk of bytes at once,
+with numpy over the buffer instead of a regex match per line, and also refuses the numbers
+``float()`` refuses (no digit, two points), which the fast path sends to the general path.
+A line it calls *plain* (:data:`PLAIN`) matches ``CAM_LINE`` with numbers ``float()`` reads;
+every other non-empty line is :data:`GENERAL`.  It is stricter than the regex in one place
+only: a ``;`` must end the line (``X1 ; `` is general), which costs speed, never a result.
+
+For a plain line the chunk holds the index of each of its words (``tok[rank, line]``, -1 when
+absent) and, per word, the facts the front end's checks need without the number's value: a
+sign, a decimal point, whether every digit is zero (``F0``), the G number.  Values are read
+on demand by :func:`values` for the words that need them (arc geometry, incremental moves),
+exactly as ``float()`` reads them: the digits as an integer (at most 12, so exact) divided by
+a power of ten (exact up to 10**22), one correctly rounded division.
+
+Only numpy; no knowledge of modal state (that is :mod:`cncc.frontend.syntax_fast`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import numpy.typing as npt
+
+EMPTY, PLAIN, GENERAL = 0, 1, 2  # line kinds
+
+RANKS = "NGXYZIJF"  # the word order of CAM_LINE
+N, G, X, Y, Z, I, J, F = range(8)  # noqa: E741 - the address letters
+MAX_NUMBER_CHARS = 12  # [\d.]{1,12}: a longer number takes the general path
+
+_DIG, _DOT, _SIGN, _SPACE, _SEMI, _CR, _LETTER, _BAD = 1, 2, 4, 8, 16, 32, 64, 128
+_NUM = _DIG | _DOT | _SIGN
+
+_FLAGS = np.full(256, _BAD, np.uint8)
+for _c in b"0123456789":
+    _FLAGS[_c] = _DIG
+_FLAGS[ord(".")] = _DOT
+_FLAGS[ord("+")] = _FLAGS[ord("-")] = _SIGN
+_FLAGS[ord(" ")] = _SPACE
+_FLAGS[ord(";")] = _SEMI
+_FLAGS[ord("\r")] = _CR
+_FLAGS[ord("\n")] = 0
+for _c in RANKS.encode():
+    _FLAGS[_c] = _LETTER
+
+_RANK = np.zeros(256, np.int8)
+for _i, _c in enumerate(RANKS.encode()):
+    _RANK[_c] = _i
+_AXIS = np.zeros(256, np.bool_)  # letters whose number may be signed
+for _c in b"XYZIJ":
+    _AXIS[_c] = True
+
+# one cumulative sum counts three things per word: number characters (bits 0-20), digits
+# (21-41) and non-zero digits (42-62); a chunk is at most 2**21 - 1 bytes
+_FIELD = 21
+_MASK = (1 << _FIELD) - 1
+MAX_CHUNK = (1 << _FIELD) - 64
+_COUNT = np.zeros(256, np.int64)
+for _c in b"0123456789":
+    _COUNT[_c] = 1 | (1 << _FIELD) | ((1 << (2 * _FIELD)) if _c != ord("0") else 0)
+_COUNT[ord(".")] = _COUNT[ord("+")] = _COUNT[ord("-")] = 1
+
+_POW10 = np.array([10.0 ** k for k in range(23)])  # exact: 10**k is a double for k <= 22
+_COLS = np.arange(MAX_NUMBER_CHARS)
+
+IntArray = npt.NDArray[np.int64]
+BoolArray = npt.NDArray[np.bool_]
+
+
+@dataclass(slots=True)
+class Chunk:
+    """The lines of ``buf[:n]`` (byte offsets within the chunk) and the words of its plain lines."""
+
+    buf: npt.NDArray[np.uint8]  # the chunk's bytes, then a '\n' and zero padding
+    starts: IntArray  # line starts
+    ends: IntArray  # line ends: the '\n' (or the chunk's end); a '\r' before it is in the line
+    kind: npt.NDArray[np.int8]  # EMPTY, PLAIN or GENERAL per line
+    tok: npt.NDArray[np.int32]  # (8, lines): word index of each letter in RANKS order, -1 absent
+    letter: IntArray  # per word: position of its letter
+    nchars: IntArray  # per word: characters of its number (sign included)
+    signed: BoolArray  # per word: the number starts with + or -
+    point: BoolArray  # per word: it has a decimal point
+    zero: BoolArray  # per word: every digit is 0
+    g_number: npt.NDArray[np.int8]  # per word: the last digit (the G number of a G word)
+    semi: BoolArray  # per line: ends with ';'
+
+
+def scan_chunk(data: bytes | memoryview, start: int, stop: int) -> Chunk:
+    """Scan ``data[start:stop]`` (whole lines: ``stop`` is just after a '\\n' or the end)."""
+    n = stop - start
+    buf = np.zeros(n + 16, np.uint8)
+    buf[:n] = np.frombuffer(data, np.uint8, n, start)
+    buf[n] = 10  # a line end after the last line
+    b = buf[:n]
+    fl = _FLAGS[buf[: n + 1]]
+    cur, nxt = fl[:n], fl[1:]
+    nl = np.flatnonzero(b == 10)
+    ends = nl if n == 0 or b[n - 1] == 10 else np.append(nl, n)
+    starts = np.empty_like(ends)
+    if len(ends):
+        starts[0] = 0
+        starts[1:] = ends[:-1] + 1
+    nlines = len(ends)
+    # byte-level refusals: another character; '\r' not at the end; ';' not at the end (before '\r'?);
+    # a letter not followed by its number; a number after a space; a sign not after X Y Z I J
+    bad = (cur & _BAD) != 0
+    bad |= ((cur & _CR) != 0) & (buf[1 : n + 1] != 10)
+    bad |= ((cur & _SEMI) != 0) & ((nxt & _CR) == 0) & (buf[1 : n + 1] != 10)
+    bad |= ((cur & _LETTER) != 0) & ((nxt & _NUM) == 0)
+    bad |= ((cur & _SPACE) != 0) & ((nxt & _NUM) != 0)
+    sign = np.flatnonzero(cur & _SIGN)
+    line_bad = np.zeros(nlines, np.bool_)
+    pos_bad = np.flatnonzero(bad)
+    if len(sign):
+        pos_bad = np.concatenate((pos_bad, sign[~_AXIS[buf[sign - 1]]]))
+    if len(pos_bad):
+        line_bad[np.searchsorted(starts, pos_bad, "right") - 1] = True
+    empty = starts == ends
+    line_bad |= ~empty & ((fl[np.minimum(starts, n)] & _LETTER) == 0)  # a plain line starts with its first word
+    # words: letter, rank, line; ranks strictly increase along a line
+    letter = np.flatnonzero(cur & _LETTER)
+    rank = _RANK[b[letter]]
+    line = np.searchsorted(starts, letter, "right") - 1
+    same = line[1:] == line[:-1]
+    line_bad[line[1:][same & (rank[1:] <= rank[:-1])]] = True
+    bound = np.empty_like(letter)  # the word's characters end at the next letter or the line end
+    if len(letter):
+        bound[:-1] = np.where(same, letter[1:], ends[line[:-1]])
+        bound[-1] = ends[line[-1]]
+    counts = np.zeros(n + 1, np.int64)
+    np.cumsum(_COUNT[b], out=counts[1:])
+    c = counts[bound] - counts[letter + 1]
+    nchars = c & _MASK
+    ndigits = (c >> _FIELD) & _MASK
+    nonzero = c >> (2 * _FIELD)
+    signed = (fl[letter + 1] & _SIGN) != 0
+    body = nchars - signed  # characters after the sign
+    npoints = body - ndigits
+    last = buf[letter + nchars]  # the number's last character
+    ok = (ndigits >= 1) & (npoints <= 1) & (body <= MAX_NUMBER_CHARS)  # [\d.]{1,12} that float() reads
+    is_n, is_g = rank == N, rank == G
+    ok = np.where(is_n, npoints == 0, ok)  # N\d+: any length
+    ok = np.where(is_g, (npoints == 0) & (nonzero - (last != 48) == 0) & (last <= 51), ok)  # G0*[0-3]
+    line_bad[line[~ok]] = True
+    kind = np.where(empty, EMPTY, np.where(line_bad, GENERAL, PLAIN)).astype(np.int8)
+    tok = np.full((8, nlines), -1, np.int32)
+    tok[rank, line] = np.arange(len(letter), dtype=np.int32)
+    tail = np.maximum(ends - 1, 0)
+    semi = (buf[tail] == 59) | ((buf[tail] == 13) & (buf[np.maximum(ends - 2, 0)] == 59) & (ends - starts >= 2))
+    return Chunk(buf, starts, ends, kind, tok, letter, nchars, signed, npoints > 0, nonzero == 0,
+                 (last.astype(np.int16) - 48).astype(np.int8), semi & ~empty)
+
+
+def chunks(data: bytes, size: int = 1 << 20) -> list[tuple[int, int]]:
+    """``(start, stop)`` of chunks of about ``size`` bytes that end at line ends."""
+    size = min(size, MAX_CHUNK)
+    out: list[tuple[int, int]] = []
+    pos, n = 0, len(data)
+    while pos < n:
+        stop = n if n - pos <= size else data.rfind(b"\n", pos, pos + size) + 1
+        if stop <= pos:  # a line longer than a chunk: up to its end
+            nl = data.find(b"\n", pos + size)
+            stop = n if nl < 0 else nl + 1
+            if stop - pos > MAX_CHUNK:  # pragma: no cover - the caller refuses such inputs
+                raise ValueError("line longer than a scan chunk")
+        out.append((pos, stop))
+        pos = stop
+    return out
+
+
+def values(ch: Chunk, words: IntArray) -> npt.NDArray[np.float64]:
+    """The numbers of ``words`` (indices of words of plain lines), as ``float()`` reads them."""
+    if len(words) == 0:
+        return np.zeros(0)
+    first = ch.letter[words] + 1
+    signed = ch.signed[words]
+    body = ch.nchars[words] - signed
+    cells = ch.buf[(first + signed)[:, None] + _COLS].astype(np.int64)  # the padding keeps it in the buffer
+    inside = body[:, None] > _COLS
+    digit = inside & (cells != 46)
+    d = np.where(digit, cells - 48, 0)
+    after = np.cumsum(digit[:, ::-1], axis=1)[:, ::-1] - digit  # digits to the right of each cell
+    mantissa = (d * (10 ** np.minimum(after, 18))).sum(axis=1)  # <= 12 digits: exact
+    dot = inside & (cells == 46)
+    frac = np.where(dot.any(axis=1), after[np.arange(len(words)), dot.argmax(axis=1)], 0)
+    v = mantissa.astype(np.float64) / _POW10[frac]
+    negative = signed & (ch.buf[first] == 45)
+    out: npt.NDArray[np.float64] = np.where(negative, -v, v)
+    return out
