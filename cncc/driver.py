@@ -370,12 +370,15 @@ def check_pipeline(opts: Options, sources: SourceMap, sink: DiagnosticSink) -> b
 
 def instrumentation(opts: Options, sources: SourceMap) -> Any:
     """The pass manager's instruments for --verify-each, --print-after and --time-passes."""
-    from cncc.backends.irdump import dump_ir
     from cncc.pipeline.manager import Instrumentation
 
+    def printer(cmds: Any) -> str:
+        from cncc.backends.irdump import dump_ir  # only for --print-after
+
+        return "".join(dump_ir(cmds, sources))
+
     return Instrumentation(verify_each=opts.verify_each, print_after=frozenset(opts.print_after),
-                           time_passes=opts.time_passes, sources=sources,
-                           printer=lambda cmds: "".join(dump_ir(cmds, sources)))
+                           time_passes=opts.time_passes, sources=sources, printer=printer)
 
 
 def pass_report(ins: Any, opts: Options, sink: DiagnosticSink) -> str:
@@ -600,7 +603,7 @@ def _file_setup(base_opts: Options, base_dialect: Dialect, base_machine: Machine
         if model is None:
             return None
         machine = apply_dialect_to_machine(model, opts, sink)
-    if not src.text.strip():
+    if not src.text or src.text.isspace():  # (not strip(): no copy of a big file)
         sink.emit(dg.EMPTY_PROGRAM, Span(src.source_id, 0, 0), "the program contains no blocks")
     if opts.dialect is None:  # no -x: guess from the name and contents (reported with -v)
         guessed = guessed_dialect(src, opts, sink)

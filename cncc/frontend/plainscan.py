@@ -56,15 +56,39 @@ _AXIS = np.zeros(256, np.bool_)  # letters whose number may be signed
 for _c in b"XYZIJ":
     _AXIS[_c] = True
 
-# one cumulative sum counts three things per word: number characters (bits 0-20), digits
-# (21-41) and non-zero digits (42-62); a chunk is at most 2**21 - 1 bytes
+# one cumulative sum counts three things: number characters (bits 0-20), digits (21-41) and
+# letters (42-62); a chunk is at most 2**21 - 1 bytes
 _FIELD = 21
 _MASK = (1 << _FIELD) - 1
 MAX_CHUNK = (1 << _FIELD) - 64
-_COUNT = np.zeros(256, np.int64)
+_COUNT = np.zeros(256, np.uint64)
 for _c in b"0123456789":
-    _COUNT[_c] = 1 | (1 << _FIELD) | ((1 << (2 * _FIELD)) if _c != ord("0") else 0)
+    _COUNT[_c] = 1 | (1 << _FIELD)
 _COUNT[ord(".")] = _COUNT[ord("+")] = _COUNT[ord("-")] = 1
+for _c in RANKS.encode():
+    _COUNT[_c] = 1 << (2 * _FIELD)
+_IS_LETTER = (_FLAGS & _LETTER) != 0
+
+
+def _bad_pairs() -> npt.NDArray[np.bool_]:
+    """Whether two consecutive bytes ``x y`` (index ``x * 256 + y``) make the line of ``x`` not plain:
+    ``x`` is another character; a '\r' not before the line end; a ';' not before '\r' or the line end;
+    a letter not followed by its number; a number after a space; a sign after anything but X Y Z I J
+    (a sign that starts a line is refused because a plain line starts with its first word)."""
+    x = np.repeat(np.arange(256), 256)
+    y = np.tile(np.arange(256), 256)
+    fx, fy = _FLAGS[x], _FLAGS[y]
+    bad = (fx & _BAD) != 0
+    bad |= ((fx & _CR) != 0) & (y != 10)
+    bad |= ((fx & _SEMI) != 0) & ((fy & _CR) == 0) & (y != 10)
+    bad |= ((fx & _LETTER) != 0) & ((fy & _NUM) == 0)
+    bad |= ((fx & _SPACE) != 0) & ((fy & _NUM) != 0)
+    bad |= ((fy & _SIGN) != 0) & ~_AXIS[x]
+    bad &= x != 10
+    return bad
+
+
+_BAD_PAIR = _bad_pairs()
 
 _POW10 = np.array([10.0 ** k for k in range(23)])  # exact: 10**k is a double for k <= 22
 _COLS = np.arange(MAX_NUMBER_CHARS)
@@ -94,12 +118,10 @@ class Chunk:
 def scan_chunk(data: bytes | memoryview, start: int, stop: int) -> Chunk:
     """Scan ``data[start:stop]`` (whole lines: ``stop`` is just after a '\\n' or the end)."""
     n = stop - start
-    buf = np.zeros(n + 16, np.uint8)
+    buf = np.zeros(n + 32, np.uint8)
     buf[:n] = np.frombuffer(data, np.uint8, n, start)
     buf[n] = 10  # a line end after the last line
     b = buf[:n]
-    fl = _FLAGS[buf[: n + 1]]
-    cur, nxt = fl[:n], fl[1:]
     nl = np.flatnonzero(b == 10)
     ends = nl if n == 0 or b[n - 1] == 10 else np.append(nl, n)
     starts = np.empty_like(ends)
@@ -107,54 +129,74 @@ def scan_chunk(data: bytes | memoryview, start: int, stop: int) -> Chunk:
         starts[0] = 0
         starts[1:] = ends[:-1] + 1
     nlines = len(ends)
-    # byte-level refusals: another character; '\r' not at the end; ';' not at the end (before '\r'?);
-    # a letter not followed by its number; a number after a space; a sign not after X Y Z I J
-    bad = (cur & _BAD) != 0
-    bad |= ((cur & _CR) != 0) & (buf[1 : n + 1] != 10)
-    bad |= ((cur & _SEMI) != 0) & ((nxt & _CR) == 0) & (buf[1 : n + 1] != 10)
-    bad |= ((cur & _LETTER) != 0) & ((nxt & _NUM) == 0)
-    bad |= ((cur & _SPACE) != 0) & ((nxt & _NUM) != 0)
-    sign = np.flatnonzero(cur & _SIGN)
+    # the byte-pair rules (_bad_pairs) on the pairs at even and at odd offsets: two lookups of n/2
+    half = (n + 2) // 2
+    even = _BAD_PAIR[buf[: 2 * half].view(">u2")]
+    odd = _BAD_PAIR[buf[1 : 2 * half + 1].view(">u2")]
+    pos_bad = np.concatenate((np.flatnonzero(even) * 2, np.flatnonzero(odd) * 2 + 1))
     line_bad = np.zeros(nlines, np.bool_)
-    pos_bad = np.flatnonzero(bad)
-    if len(sign):
-        pos_bad = np.concatenate((pos_bad, sign[~_AXIS[buf[sign - 1]]]))
     if len(pos_bad):
-        line_bad[np.searchsorted(starts, pos_bad, "right") - 1] = True
+        line_bad[np.searchsorted(starts, pos_bad[pos_bad < n], "right") - 1] = True
     empty = starts == ends
-    line_bad |= ~empty & ((fl[np.minimum(starts, n)] & _LETTER) == 0)  # a plain line starts with its first word
+    line_bad |= ~empty & ~_IS_LETTER[buf[starts]]  # a plain line starts with its first word
     # words: letter, rank, line; ranks strictly increase along a line
-    letter = np.flatnonzero(cur & _LETTER)
+    counts = np.cumsum(_COUNT[b])  # inclusive: counts[k] covers b[: k + 1]
+    letter = np.flatnonzero(_IS_LETTER[b])
     rank = _RANK[b[letter]]
-    line = np.searchsorted(starts, letter, "right") - 1
+    per_line = np.zeros(nlines, np.int64)
+    if nlines and n:
+        c_end = counts[ends - 1] >> np.uint64(2 * _FIELD)
+        c_start = np.where(starts > 0, counts[np.maximum(starts - 1, 0)] >> np.uint64(2 * _FIELD), 0)
+        per_line = np.where(empty, 0, c_end - c_start).astype(np.int64)
+    line = np.repeat(np.arange(nlines), per_line)
     same = line[1:] == line[:-1]
     line_bad[line[1:][same & (rank[1:] <= rank[:-1])]] = True
     bound = np.empty_like(letter)  # the word's characters end at the next letter or the line end
     if len(letter):
         bound[:-1] = np.where(same, letter[1:], ends[line[:-1]])
         bound[-1] = ends[line[-1]]
-    counts = np.zeros(n + 1, np.int64)
-    np.cumsum(_COUNT[b], out=counts[1:])
-    c = counts[bound] - counts[letter + 1]
+    c = (counts[bound - 1] - counts[letter]).astype(np.int64)  # over [letter + 1, bound)
     nchars = c & _MASK
     ndigits = (c >> _FIELD) & _MASK
-    nonzero = c >> (2 * _FIELD)
-    signed = (fl[letter + 1] & _SIGN) != 0
+    signed = buf[letter + 1] == 45
+    signed |= buf[letter + 1] == 43
     body = nchars - signed  # characters after the sign
     npoints = body - ndigits
     last = buf[letter + nchars]  # the number's last character
     ok = (ndigits >= 1) & (npoints <= 1) & (body <= MAX_NUMBER_CHARS)  # [\d.]{1,12} that float() reads
-    is_n, is_g = rank == N, rank == G
-    ok = np.where(is_n, npoints == 0, ok)  # N\d+: any length
-    ok = np.where(is_g, (npoints == 0) & (nonzero - (last != 48) == 0) & (last <= 51), ok)  # G0*[0-3]
+    is_n = rank == N
+    ok[is_n] = npoints[is_n] == 0  # N\d+: any length
+    zero = np.zeros(len(letter), np.bool_)
+    f_words = np.flatnonzero(rank == F)
+    zero[f_words] = _all_zero(buf, letter[f_words] + 1, nchars[f_words])  # F0
+    g_words = np.flatnonzero(rank == G)
+    g_len = nchars[g_words]
+    lead = np.ones(len(g_words), np.bool_)  # the G number is 0*[0-3]: zeros, then its last digit
+    two = g_len == 2
+    lead[two] = buf[letter[g_words[two]] + 1] == 48
+    more = np.flatnonzero(g_len > 2)
+    lead[more] = _all_zero(buf, letter[g_words[more]] + 1, g_len[more] - 1)
+    ok[g_words] = (npoints[g_words] == 0) & lead & (last[g_words] <= 51)
+    zero[g_words] = last[g_words] == 48
     line_bad[line[~ok]] = True
     kind = np.where(empty, EMPTY, np.where(line_bad, GENERAL, PLAIN)).astype(np.int8)
     tok = np.full((8, nlines), -1, np.int32)
     tok[rank, line] = np.arange(len(letter), dtype=np.int32)
     tail = np.maximum(ends - 1, 0)
     semi = (buf[tail] == 59) | ((buf[tail] == 13) & (buf[np.maximum(ends - 2, 0)] == 59) & (ends - starts >= 2))
-    return Chunk(buf, starts, ends, kind, tok, letter, nchars, signed, npoints > 0, nonzero == 0,
+    return Chunk(buf, starts, ends, kind, tok, letter, nchars, signed, npoints > 0, zero,
                  (last.astype(np.int16) - 48).astype(np.int8), semi & ~empty)
+
+
+def _all_zero(buf: npt.NDArray[np.uint8], first: IntArray, length: IntArray) -> BoolArray:
+    """Whether the ``length`` characters from ``first`` hold no digit 1-9 (a longer number than
+    MAX_NUMBER_CHARS + 1 is refused anyway: it counts as not zero)."""
+    width = MAX_NUMBER_CHARS + 1
+    cells = buf[first[:, None] + np.arange(width)]
+    inside = np.arange(width) < length[:, None]
+    nonzero = inside & (cells >= 49) & (cells <= 57)
+    out: BoolArray = ~nonzero.any(axis=1) & (length <= width)
+    return out
 
 
 def chunks(data: bytes, size: int = 1 << 20) -> list[tuple[int, int]]:
@@ -181,15 +223,17 @@ def values(ch: Chunk, words: IntArray) -> npt.NDArray[np.float64]:
     first = ch.letter[words] + 1
     signed = ch.signed[words]
     body = ch.nchars[words] - signed
-    cells = ch.buf[(first + signed)[:, None] + _COLS].astype(np.int64)  # the padding keeps it in the buffer
-    inside = body[:, None] > _COLS
+    width = int(body.max())
+    cols = _COLS[:width]
+    cells = ch.buf[(first + signed)[:, None] + cols]  # the padding keeps it in the buffer
+    inside = cols < body[:, None]
     digit = inside & (cells != 46)
-    d = np.where(digit, cells - 48, 0)
     after = np.cumsum(digit[:, ::-1], axis=1)[:, ::-1] - digit  # digits to the right of each cell
-    mantissa = (d * (10 ** np.minimum(after, 18))).sum(axis=1)  # <= 12 digits: exact
-    dot = inside & (cells == 46)
+    # integers below 10**12 are exact doubles, and so is their sum
+    mantissa = (np.where(digit, cells - 48.0, 0.0) * _POW10[after]).sum(axis=1)
+    dot = inside & ~digit
     frac = np.where(dot.any(axis=1), after[np.arange(len(words)), dot.argmax(axis=1)], 0)
-    v = mantissa.astype(np.float64) / _POW10[frac]
+    v = mantissa / _POW10[frac]
     negative = signed & (ch.buf[first] == 45)
     out: npt.NDArray[np.float64] = np.where(negative, -v, v)
     return out

@@ -158,7 +158,7 @@ class _Walk:
         ascii_only = text.isascii()
         data = text.encode("ascii") if ascii_only else text.encode("utf-8", "surrogatepass")
         bounds = ps.chunks(data, chunk_bytes)
-        total_lines = text.count("\n") + 1
+        total_lines = data.count(b"\n") + 1
         char_base = 0  # character offset of the chunk's first byte
         line_base = 0  # 0-based line number of the chunk's first line
         for cs, ce in bounds:
