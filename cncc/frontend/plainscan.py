@@ -85,7 +85,8 @@ def _bad_pairs() -> npt.NDArray[np.bool_]:
     bad |= ((fx & _SPACE) != 0) & ((fy & _NUM) != 0)
     bad |= ((fy & _SIGN) != 0) & ~_AXIS[x]
     bad &= x != 10
-    return bad
+    out: npt.NDArray[np.bool_] = bad
+    return out
 
 
 _BAD_PAIR = _bad_pairs()
