@@ -366,3 +366,16 @@ def test_values_are_exactly_float() -> None:
     want = np.array([float(n) for n in nums])
     assert np.array_equal(got, want)
     assert np.array_equal(np.signbit(got), np.signbit(want))
+
+
+@pytest.mark.parametrize("dialect", ["syntec", "fanuc", "haas", "szgh", "grbl", "linuxcnc", "series8"])
+def test_the_tape_mark_reads_as_the_grammar_reads_it(dialect: str) -> None:
+    """A '%' line skips the grammar (its first use costs ~50 ms at start-up); the block is the grammar's."""
+    from cncc.diagnostics import DiagnosticSink
+    from cncc.frontend.parser import ParseOptions, Parser
+    from cncc.source import SourceMap
+
+    parser = Parser(load_dialect(dialect), DiagnosticSink(), ParseOptions())
+    for line in ("%", "%\r"):
+        src = SourceMap().add("t.nc", "G1\n" + line + "\n")
+        assert list(parser.blocks_of_line(src, 3, 3 + len(line), 2)) == list(parser._lark_blocks(src, line, 3, 2))
