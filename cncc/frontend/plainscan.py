@@ -92,7 +92,6 @@ def _bad_pairs() -> npt.NDArray[np.bool_]:
 _BAD_PAIR = _bad_pairs()
 
 _POW10 = np.array([10.0 ** k for k in range(23)])  # exact: 10**k is a double for k <= 22
-_COLS = np.arange(MAX_NUMBER_CHARS)
 
 IntArray = npt.NDArray[np.int64]
 BoolArray = npt.NDArray[np.bool_]
@@ -218,22 +217,25 @@ def chunks(data: bytes, size: int = 1 << 20) -> list[tuple[int, int]]:
 
 
 def values(ch: Chunk, words: IntArray) -> npt.NDArray[np.float64]:
-    """The numbers of ``words`` (indices of words of plain lines), as ``float()`` reads them."""
+    """The numbers of ``words`` (indices of words of plain lines), as ``float()`` reads them: Horner's
+    rule over the digits (integers below 10**15 are exact doubles), then one correctly rounded
+    division by a power of ten (exact up to 10**22)."""
     if len(words) == 0:
         return np.zeros(0)
     first = ch.letter[words] + 1
     signed = ch.signed[words]
     body = ch.nchars[words] - signed
-    width = int(body.max())
-    cols = _COLS[:width]
-    cells = ch.buf[(first + signed)[:, None] + cols]  # the padding keeps it in the buffer
-    inside = cols < body[:, None]
-    digit = inside & (cells != 46)
-    after = np.cumsum(digit[:, ::-1], axis=1)[:, ::-1] - digit  # digits to the right of each cell
-    # integers below 10**12 are exact doubles, and so is their sum
-    mantissa = (np.where(digit, cells - 48.0, 0.0) * _POW10[after]).sum(axis=1)
-    dot = inside & ~digit
-    frac = np.where(dot.any(axis=1), after[np.arange(len(words)), dot.argmax(axis=1)], 0)
+    start = first + signed
+    mantissa = np.zeros(len(words))
+    frac = np.zeros(len(words), np.int64)
+    seen_point = np.zeros(len(words), np.bool_)
+    for j in range(int(body.max())):  # the padding keeps start + j in the buffer
+        c = ch.buf[start + j]
+        inside = j < body
+        digit = inside & (c != 46)
+        mantissa = np.where(digit, mantissa * 10.0 + (c - 48.0), mantissa)
+        frac += digit & seen_point
+        seen_point |= inside & (c == 46)
     v = mantissa / _POW10[frac]
     negative = signed & (ch.buf[first] == 45)
     out: npt.NDArray[np.float64] = np.where(negative, -v, v)
