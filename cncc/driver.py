@@ -555,14 +555,17 @@ def compile_files(opts: Options, stdin: TextIO | None = None) -> Result:
     return result
 
 
+FAST_SYNTAX_MIN_CHARS = 1 << 16  # a smaller program is checked sooner than numpy is imported
+
+
 def fast_syntax_only(src: SourceFile, dialect: Dialect, machine: MachineModel, opts: Options, sink: DiagnosticSink,
                      sources: SourceMap, deps: list[str], ini: Any, manager: Any) -> bool:
     """-fsyntax-only with the default passes on a fast-path dialect: the front end's sparse stream of
     cncc/frontend/syntax_fast.py (plain blocks decided with arrays) through the path passes, the
     same diagnostics as the whole stream.  False (nothing done) when it does not apply; a program
     that is not straight-line after all starts again on the front end, its diagnostics forgotten."""
-    if (opts.expand or opts.passes or opts.verify_each or opts.print_after or opts.time_passes
-            or opts.emit in MACHINE_EMITS or opts.emit == "gcode"):
+    if (len(src.text) < FAST_SYNTAX_MIN_CHARS or opts.expand or opts.passes or opts.verify_each
+            or opts.print_after or opts.time_passes or opts.emit in MACHINE_EMITS or opts.emit == "gcode"):
         return False
     from cncc.frontend.syntax_fast import ArcLimits, NotStraight, applies, lower_for_check
 

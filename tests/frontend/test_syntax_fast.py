@@ -39,6 +39,12 @@ def slow_path(monkeypatch: pytest.MonkeyPatch) -> Iterator[None]:
         yield
 
 
+@pytest.fixture(autouse=True)
+def small_programs_too(monkeypatch: pytest.MonkeyPatch) -> None:
+    """The checker skips programs under 64 KB (numpy's import costs more); these tests are smaller."""
+    monkeypatch.setattr(driver, "FAST_SYNTAX_MIN_CHARS", 0)
+
+
 def check(path: Path, dialect: str | None, monkeypatch: pytest.MonkeyPatch,
           **options: Any) -> tuple[list[Diag], bool, list[Any]]:
     """Diagnostics and error status of -fsyntax-only on ``path``, and the walks that ran."""
@@ -379,3 +385,14 @@ def test_the_tape_mark_reads_as_the_grammar_reads_it(dialect: str) -> None:
     for line in ("%", "%\r"):
         src = SourceMap().add("t.nc", "G1\n" + line + "\n")
         assert list(parser.blocks_of_line(src, 3, 3 + len(line), 2)) == list(parser._lark_blocks(src, line, 3, 2))
+
+
+def test_small_programs_skip_the_checker(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setattr(driver, "FAST_SYNTAX_MIN_CHARS", 1 << 16)
+    small = tmp_path / "small.nc"
+    small.write_text(cam_file(1000, False))
+    assert check(small, "syntec", monkeypatch)[2] == []
+    big = tmp_path / "big.nc"
+    big.write_text(cam_file(5000, False))
+    assert len(big.read_text()) >= 1 << 16
+    assert len(check(big, "syntec", monkeypatch)[2]) == 1
