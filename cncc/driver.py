@@ -383,12 +383,15 @@ def check_pipeline(opts: Options, sources: SourceMap, sink: DiagnosticSink) -> b
 
 def instrumentation(opts: Options, sources: SourceMap) -> Any:
     """The pass manager's instruments for --verify-each, --print-after and --time-passes."""
-    from cncc.backends.irdump import dump_ir
     from cncc.pipeline.manager import Instrumentation
 
+    def printer(cmds: Any) -> str:
+        from cncc.backends.irdump import dump_ir  # only for --print-after
+
+        return "".join(dump_ir(cmds, sources))
+
     return Instrumentation(verify_each=opts.verify_each, print_after=frozenset(opts.print_after),
-                           time_passes=opts.time_passes, sources=sources,
-                           printer=lambda cmds: "".join(dump_ir(cmds, sources)))
+                           time_passes=opts.time_passes, sources=sources, printer=printer)
 
 
 def pass_report(ins: Any, opts: Options, sink: DiagnosticSink) -> str:
@@ -549,6 +552,8 @@ def compile_files(opts: Options, stdin: TextIO | None = None) -> Result:
             for _ in until_limit(front_end(src, dialect, machine, opts, sink, sources, deps, ini), sink):
                 pass
             continue
+        if opts.syntax_only and fast_syntax_only(src, dialect, machine, opts, sink, sources, deps, ini, manager):
+            continue
         cmds = path_passes(until_limit(front_end(src, dialect, machine, opts, sink, sources, deps, ini), sink),
                            dialect, machine, opts, sink, manager)
         if opts.expand:
@@ -566,6 +571,47 @@ def compile_files(opts: Options, stdin: TextIO | None = None) -> Result:
     return result
 
 
+FAST_SYNTAX_MIN_CHARS = 1 << 16  # a smaller program is checked sooner than numpy is imported
+
+
+def fast_syntax_only(src: SourceFile, dialect: Dialect, machine: MachineModel, opts: Options, sink: DiagnosticSink,
+                     sources: SourceMap, deps: list[str], ini: Any, manager: Any) -> bool:
+    """-fsyntax-only with the default passes on a fast-path dialect: the front end's sparse stream of
+    cncc/frontend/syntax_fast.py (plain blocks decided with arrays) through the path passes, the
+    same diagnostics as the whole stream.  False (nothing done) when it does not apply; a program
+    that is not straight-line after all starts again on the front end, its diagnostics forgotten."""
+    if (len(src.text) < FAST_SYNTAX_MIN_CHARS or opts.expand or opts.passes or opts.verify_each
+            or opts.print_after or opts.time_passes or opts.emit in MACHINE_EMITS or opts.emit == "gcode"):
+        return False
+    from cncc.frontend.syntax_fast import ArcLimits, NotStraight, applies, lower_for_check
+
+    if not applies(dialect):
+        return False
+    from cncc.frontend import lower
+    from cncc.frontend.tape import before_tape_end
+    from cncc.pipeline.builder import path_options
+
+    if ini is None and opts.ini_file:
+        ini = load_ini(opts, sink, sources)
+    iopts = interp_options(opts, machine, sink)
+    mopts = macro_options(opts, sink, sources, deps, ini)
+    a = path_options(pipeline_config(opts), dialect)["arc-check"]
+    limits = ArcLimits(a["abs_tol_mm"], a["rel_tol"], a["abs_tol_inch_mm"], a["max_abs_factor"])
+    checked = before_tape_end(src) if dialect.raw.get("tape_end") else src
+    mark = (len(sink.items), sink.dropped, sink.suppressed, sink.errors_kept, sink.over_limit)
+    try:
+        for _ in path_passes(until_limit(lower_for_check(checked, dialect, sink, iopts, limits), sink),
+                             dialect, machine, opts, sink, manager):
+            pass
+    except NotStraight:
+        del sink.items[mark[0]:]
+        sink.dropped, sink.suppressed, sink.errors_kept, sink.over_limit = mark[1:]
+        for _ in path_passes(until_limit(lower(src, dialect, sink, iopts, mopts), sink),
+                             dialect, machine, opts, sink, manager):
+            pass
+    return True
+
+
 def _file_setup(base_opts: Options, base_dialect: Dialect, base_machine: MachineModel, path: str,
                 src: SourceFile, sink: DiagnosticSink) -> tuple[Options, Dialect, MachineModel] | None:
     """The options, dialect and machine of one input file (its own ``cncc:`` options, a guessed
@@ -576,7 +622,7 @@ def _file_setup(base_opts: Options, base_dialect: Dialect, base_machine: Machine
         if model is None:
             return None
         machine = apply_dialect_to_machine(model, opts, sink)
-    if not src.text.strip():
+    if not src.text or src.text.isspace():  # (not strip(): no copy of a big file)
         sink.emit(dg.EMPTY_PROGRAM, Span(src.source_id, 0, 0), "the program contains no blocks")
     if opts.dialect is None:  # no -x: guess from the name and contents (reported with -v)
         guessed = guessed_dialect(src, opts, sink)

@@ -369,6 +369,9 @@ class Parser:
             line = line[:lead] + "O" + line[lead + 1:]
         if self._refuse_numbers(src, line, pos):
             return
+        if line == "%" or line == "%\r":  # the tape mark, as every grammar reads it (no grammar built for it)
+            yield sx.Block(line_no, pos, pos + 1, (), percent=True)
+            return
         m = self._plain.fullmatch(line)
         if m is not None:
             yield self._plain_block(line, pos, line_no, m.start("c"), m.group("c"))
