@@ -623,7 +623,7 @@ def run_backend(items: Iterator[Item], src: SourceFile, sources: SourceMap, dial
     if opts.emit == "canon":
         from cncc.backends.canon import emit_canon
 
-        return emit_canon(cmds, frame0, dialect.raw.get("canon"))
+        return emit_canon(items, frame0, dialect.raw.get("canon"))
     if opts.emit == "ir":
         from cncc.backends.irdump import dump_ir
 

@@ -13,9 +13,11 @@ driver runs the path passes but not the lowering to machine coordinates).
 from __future__ import annotations
 
 from collections.abc import Iterable, Iterator, Mapping
+from dataclasses import dataclass
 from typing import Any
 
 from cncc.backends.canon_format import CanonFormat
+from cncc.ir.batch import Item, MoveBatch
 from cncc.ir import (
     MODE_TYPES,
     Arc,
@@ -98,7 +100,7 @@ def _offsets(frame: Frame) -> tuple[str, str]:
     return g5x, g92
 
 
-def canon_lines(cmds: Iterable[Command], *, initial_frame: Frame | None = None,
+def canon_lines(cmds: Iterable[Item], *, initial_frame: Frame | None = None,
                 fmt: CanonFormat | None = None) -> Iterator[str]:
     """Yield the trace lines (without newlines) for ``cmds``; ``fmt`` words the calls (default: cncc's)."""
     fmt = fmt or CanonFormat()
@@ -111,11 +113,11 @@ def canon_lines(cmds: Iterable[Command], *, initial_frame: Frame | None = None,
     yield PREFIX + "SET_FEED_REFERENCE(CANON_XYZ)"
     yield PREFIX + "ON_RESET()"
     last_g5x, last_g92 = g5x, g92
-    skip = 0  # commands folded into one call (RIGID_TAP, NURBS_FEED) that are not written
+    skip = [0]  # commands folded into one call (RIGID_TAP, NURBS_FEED) that are not written
     offsets: dict[int, tuple[Frame, tuple[str, str]]] = {}  # frames are shared: format once each
-    for c in cmds:
-        if skip:
-            skip -= 1
+    for c in _texts(cmds, fmt, skip):
+        if skip[0]:
+            skip[0] -= 1
             continue
         frame = c.frame
         if not isinstance(c, MODE_TYPES):
@@ -129,6 +131,9 @@ def canon_lines(cmds: Iterable[Command], *, initial_frame: Frame | None = None,
             if g92 != last_g92:
                 yield PREFIX + g92
                 last_g92 = g92
+        if type(c) is _Text:
+            yield c.text
+            continue
         line = _one_line(c, fmt)
         if line is not None:
             yield PREFIX + line
@@ -137,7 +142,7 @@ def canon_lines(cmds: Iterable[Command], *, initial_frame: Frame | None = None,
             case InterpreterReport():
                 yield from _report(c, fmt)
             case RigidTap() | NurbsFeed() | Probe() if fmt.has(_FOLDED[type(c)]):
-                skip = c.folded
+                skip[0] = c.folded
                 yield from _lines(fmt, _FOLDED[type(c)], **_folded_fields(c))
             case _ if isinstance(c, MODE_TYPES):
                 yield from _set_mode(c, last_g5x, last_g92, fmt)
@@ -148,6 +153,32 @@ def canon_lines(cmds: Iterable[Command], *, initial_frame: Frame | None = None,
                 key, fields = _other(c)
                 yield from _lines(fmt, key, **fields)
     yield from _lines(fmt, "end_of_trace")
+
+
+@dataclass(frozen=True, slots=True)
+class _Text:
+    """A batch of moves written by :func:`cncc.backends.canon_batch.batch_text`."""
+
+    frame: Frame
+    text: str
+
+
+def _texts(items: Iterable[Item], fmt: CanonFormat, skip: list[int]) -> Iterator[Command | _Text]:
+    """The commands, with each batch of moves as its text (or, when that cannot be made exactly,
+    or while folded commands are skipped, as its commands)."""
+    for x in items:
+        if type(x) is MoveBatch:
+            text = None
+            if not skip[0]:
+                from cncc.backends.canon_batch import batch_text
+
+                text = batch_text(x, fmt.feed_in_program_units)
+            if text is None:
+                yield from x.commands()
+            else:
+                yield _Text(x.frame, text)
+        else:
+            yield x  # type: ignore[misc]
 
 
 def _report(c: InterpreterReport, fmt: CanonFormat) -> Iterator[str]:
@@ -283,7 +314,7 @@ def _arc(c: Arc) -> str:
     return "ARC_FEED(" + ", ".join(args) + ")"
 
 
-def emit_canon(cmds: Iterable[Command], initial_frame: Frame | None = None,
+def emit_canon(cmds: Iterable[Item], initial_frame: Frame | None = None,
                table: Mapping[str, Any] | None = None) -> Iterator[str]:
     """Lines with newlines, for writers; ``table`` is the dialect's ``[canon]`` table."""
     for line in canon_lines(cmds, initial_frame=initial_frame, fmt=CanonFormat(table)):

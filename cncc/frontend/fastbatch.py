@@ -36,12 +36,23 @@ from cncc.ir import Plane
 from cncc.ir.batch import Item, MoveBatch
 from cncc.source import SourceFile
 
-CHUNK_LINE = re.compile(
-    rf"^(?:N\d+ *)?(?:G0*([0-3]) *)?(?:X{_NUM} *)?(?:Y{_NUM} *)?(?:Z{_NUM} *)?(?:I{_NUM} *)?(?:J{_NUM} *)?"
-    rf"(?:F([\d.]{{1,12}}+))?( *;? *\r?)$", re.MULTILINE)
+_HEAD = r"^(?:N\d+ *)?(?:G0*([0-3]) *)?"
+_XYZ = rf"(?:X{_NUM} *)?(?:Y{_NUM} *)?(?:Z{_NUM} *)?"
+_IJ = rf"(?:I{_NUM} *)?(?:J{_NUM} *)?"
+_FEED = r"(?:F([\d.]{1,12}+))?"
+CHUNK_LINE = re.compile(_HEAD + _XYZ + _IJ + _FEED + r"( *;? *\r?)$", re.MULTILINE)
 """:data:`fastpath.CAM_LINE` (the same lines) with the text after the F number as one group,
 so the F word's span follows from the line's end."""
+_VARIANTS = {  # (I or J in the chunk, F in the chunk) -> the same pattern without the absent words' groups
+    (True, True): CHUNK_LINE,
+    (True, False): re.compile(_HEAD + _XYZ + _IJ + r" *;? *\r?$", re.MULTILINE),
+    (False, True): re.compile(_HEAD + _XYZ + _FEED + r"( *;? *\r?)$", re.MULTILINE),
+    (False, False): re.compile(_HEAD + _XYZ + r" *;? *\r?$", re.MULTILINE),
+}
+"""A chunk without the letters I, J or F matches these exactly where it matches :data:`CHUNK_LINE`;
+fewer groups make ``findall`` cheaper.  Missing columns are filled in as empty."""
 
+_POW10 = np.array([10.0 ** k for k in range(16)])  # exact doubles
 STREAK = 32  # plain lines in a row before the per-line loop hands over to chunks
 MIN_CHUNK, MAX_CHUNK = 1 << 11, 1 << 16  # characters per chunk
 _MOTION_CODE = {"": -1, "0": 0, "1": 1, "2": 2, "3": 3}
@@ -72,13 +83,15 @@ def lower_batched(src: SourceFile, dialect: Dialect, sink: DiagnosticSink,
             stop = text.find("\n", pos + size, last_line_end) if pos + size < last_line_end else -1
             stop = last_line_end if stop < 0 else stop
             lines = text.count("\n", pos, stop) + 1
-            rows = CHUNK_LINE.findall(text, pos, stop)
+            has_ij = text.find("I", pos, stop) >= 0 or text.find("J", pos, stop) >= 0
+            has_f = text.find("F", pos, stop) >= 0 or (not semicolon_ok and text.find(";", pos, stop) >= 0)
+            rows = _VARIANTS[has_ij, has_f].findall(text, pos, stop)
             if len(rows) != lines:  # some line is no plain block
                 if size > MIN_CHUNK:
                     size //= 2
                     continue
                 break
-            got = _chunk(it, src, pos, stop, rows, semicolon_ok)
+            got = _chunk(it, src, pos, stop, _columns(rows, has_ij, has_f), semicolon_ok)
             if got is None:
                 break
             batch, done = got
@@ -91,6 +104,16 @@ def lower_batched(src: SourceFile, dialect: Dialect, sink: DiagnosticSink,
             size = min(size * 2, MAX_CHUNK)
 
 
+def _columns(rows: list[tuple[str, ...]], has_ij: bool, has_f: bool) -> list[tuple[str, ...]]:
+    """The 8 columns of :data:`CHUNK_LINE` (g x y z i j f tail) from the rows of a variant."""
+    cols = list(zip(*rows, strict=True))
+    empty = ("",) * len(rows)
+    ij = cols[4:6] if has_ij else [empty, empty]
+    rest = cols[6 if has_ij else 4:]
+    f_tail = rest if has_f else [empty, empty]
+    return cols[:4] + ij + f_tail
+
+
 def _line_start(text: str, pos: int, k: int) -> int:
     """The offset of the line ``k`` lines after the one starting at ``pos``."""
     for _ in range(k):
@@ -98,20 +121,35 @@ def _line_start(text: str, pos: int, k: int) -> int:
     return pos
 
 
-def _floats(col: tuple[str, ...], present: np.ndarray[Any, Any]) -> tuple[np.ndarray[Any, Any], int]:
-    """The numbers of the non-empty strings of ``col`` (0 elsewhere) and the index of the first
-    one ``float()`` refuses (``len(col)`` when none)."""
-    out = np.zeros(len(col))
-    try:
-        out[present] = [float(s) for s in col if s]
-    except ValueError:
-        for i, s in enumerate(col):
-            if s:
-                try:
-                    out[i] = float(s)
-                except ValueError:
-                    return out, i
-    return out, len(col)
+def _numbers(u: np.ndarray[Any, Any]) -> tuple[np.ndarray[Any, Any], np.ndarray[Any, Any], int]:
+    """(values, has a point, index of the first bad one or ``len(u)``) of the words of the string
+    array ``u`` (``''``: no word, value 0).
+
+    The regular expression lets through ``[-+]?[\\d.]{1,12}``; ``float()`` refuses those without a
+    digit or with two points.  The others are read as an integer of at most 12 digits divided by
+    a power of ten: both are exact doubles, so the quotient is the correctly rounded value
+    ``float()`` gives."""
+    n = len(u)
+    width = u.dtype.itemsize // 4
+    c = u.view(np.uint32).reshape(n, width) if n else np.zeros((0, width), dtype=np.uint32)
+    digit = (c >= 48) & (c <= 57)
+    dot = c == 46
+    ndots = dot.sum(axis=1)
+    ndigits = digit.sum(axis=1)
+    present = c[:, 0] != 0
+    bad = present & ((ndots > 1) | (ndigits == 0))
+    value = np.zeros(n, dtype=np.int64)
+    after = np.zeros(n, dtype=np.int64)  # digits after the point
+    seen_dot = np.zeros(n, dtype=bool)
+    for col in range(width):
+        d = digit[:, col]
+        value = np.where(d, value * 10 + (c[:, col].astype(np.int64) - 48), value)
+        after += d & seen_dot
+        seen_dot |= dot[:, col]
+    out = value / _POW10[after]
+    out = np.where(c[:, 0] == 45, -out, out)
+    first_bad = np.flatnonzero(bad)
+    return out, ndots > 0, int(first_bad[0]) if len(first_bad) else n
 
 
 def _ffill(values: np.ndarray[Any, Any], present: np.ndarray[Any, Any], first: float) -> np.ndarray[Any, Any]:
@@ -121,7 +159,7 @@ def _ffill(values: np.ndarray[Any, Any], present: np.ndarray[Any, Any], first: f
     return np.where(idx >= 0, values[np.maximum(idx, 0)], first)
 
 
-def _chunk(it: Interpreter, src: SourceFile, pos: int, stop: int, rows: list[tuple[str, ...]],
+def _chunk(it: Interpreter, src: SourceFile, pos: int, stop: int, cols: list[tuple[str, ...]],
            semicolon_ok: bool) -> tuple[MoveBatch | None, int] | None:
     """Lower the leading lines of a chunk whose lines all match :data:`CHUNK_LINE`: (the batch
     or None, how many lines it covers); None when the state does not allow chunks at all."""
@@ -135,9 +173,8 @@ def _chunk(it: Interpreter, src: SourceFile, pos: int, stop: int, rows: list[tup
     k_int = rd.liu_length_mm if rd.liu_rule else k_pt
     feed0 = -1.0 if modal.feed is None else modal.feed * k_pt
     p = it.pos
-    cols = list(zip(*rows, strict=True))
     g, xs, ys, zs, is_, js, fs, tail = cols
-    m = len(rows)
+    m = len(g)
     # line ends: the newlines of the chunk (all its characters are ASCII: every line matched)
     raw = np.frombuffer(src.text[pos:stop].encode("ascii"), dtype=np.uint8)
     ends = np.empty(m, dtype=np.int64)
@@ -155,10 +192,9 @@ def _chunk(it: Interpreter, src: SourceFile, pos: int, stop: int, rows: list[tup
             words[name] = (none, np.zeros(m), none)
             continue
         u = np.array(col)
-        present = u != ""
-        vals, bad = _floats(col, present)
+        vals, dot, bad = _numbers(u)
         limit = min(limit, bad)
-        words[name] = (present, vals, np.char.find(u, ".") >= 0)
+        words[name] = (u != "", vals, dot)
     code = np.array([_MOTION_CODE[c] for c in g], dtype=np.int8)
     code = _ffill(code, code >= 0, _MOTION_NUMBER[modal.motion]).astype(np.int8)
     fp, fv, _ = words["f"]

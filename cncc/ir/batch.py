@@ -39,6 +39,7 @@ if TYPE_CHECKING:
     I8 = npt.NDArray[np.int8]
 
 RAPID, LINEAR, ARC = 0, 1, 2
+_ZERO6 = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
 
 
 @dataclass(frozen=True, slots=True, eq=False)
@@ -75,6 +76,18 @@ class MoveBatch:
     def last_end(self) -> Vec6:
         e = self.end[-1].tolist()
         return (e[0], e[1], e[2], e[3], e[4], e[5])
+
+    @property
+    def passes_whole(self) -> bool:
+        """True when a pass that leaves these moves alone may pass the batch through whole.
+
+        The per-command passes re-derive a move's start from the offset end of the move before
+        whenever another command (an F word's ``FeedRate``) came between them, which changes the
+        start's last bits under non-zero offsets; without F words, or without offsets, it does not."""
+        f = self.frame
+        if f.total_offset_mm == _ZERO6 and (f.rotation is None or not f.rotation.work):
+            return True
+        return not bool((self.feed_start >= 0).any())
 
     def starts(self) -> F64:
         """(n, 6): where each move starts (``start0``, then the previous ends)."""

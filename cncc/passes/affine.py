@@ -31,7 +31,8 @@ from dataclasses import dataclass, replace
 from typing import ClassVar
 
 from cncc import diagnostics as dg
-from cncc.ir import Arc, Command, CompSide, Cycle, Frame, Linear, Plane, Rapid, Vec6
+from cncc.ir import ZERO6, Arc, Command, CompSide, Cycle, Frame, Linear, Plane, Rapid, Vec6
+from cncc.ir.batch import Item, MoveBatch, expand
 from cncc.ir.frame import add_offsets, sub_offsets
 from cncc.passes import Pass, PassContext
 
@@ -118,37 +119,63 @@ class AffinePass(Pass):
         return True
 
     def run(self, cmds: Iterable[Command], ctx: PassContext) -> Iterator[Command]:
+        return expand(self.run_items(cmds, ctx))
+
+    def run_items(self, items: Iterable[Item], ctx: PassContext) -> Iterator[Item]:
         last: Vec6 | None = None  # actual end of the previous motion, program + offsets
         cache: dict[int, tuple[Frame, Affine | None, Frame]] = {}
         # Fast path: once a motion went through unchanged (no transform in its frame), the
-        # next motion in the same frame object that starts where it ended goes through
-        # unchanged too, without per-command work; ``last`` is materialised on leaving.
-        through: Rapid | Linear | Arc | None = None
-        for c in cmds:
-            frame = c.frame
-            if through is not None:
-                if frame is through.frame and isinstance(c, _MOTIONS) and c.start == through.end:
-                    through = c
-                    yield c
+        # next motion (or batch of moves) in the same frame object that starts where it ended
+        # goes through unchanged too, without per-command work; ``last`` is materialised on leaving.
+        t_frame: Frame | None = None  # frame and end of the last motion passed through
+        t_end: Vec6 = ZERO6
+        for x in items:
+            if type(x) is MoveBatch:
+                frame = x.frame
+                if t_frame is not None:
+                    if frame is t_frame and x.start0 == t_end and x.passes_whole:
+                        t_end = x.last_end
+                        yield x
+                        continue
+                    last = add_offsets(t_end, t_frame)
+                    t_frame = None
+                entry = cache.get(id(frame))
+                if entry is None or entry[0] is not frame:
+                    aff = self.affine(frame)
+                    entry = cache[id(frame)] = (frame, aff, self.strip(frame, aff))
+                if (entry[1] is None and entry[2] is frame and x.passes_whole
+                        and (last is None or sub_offsets(last, frame) == x.start0)):
+                    t_frame, t_end = frame, x.last_end  # as the first move would, the rest follow
+                    yield x
                     continue
-                last = add_offsets(through.end, through.frame)
-                through = None
-            entry = cache.get(id(frame))
-            if entry is None or entry[0] is not frame:
-                aff = self.affine(frame)
-                entry = cache[id(frame)] = (frame, aff, self.strip(frame, aff))
-            _, aff, nf = entry
-            if isinstance(c, Rapid | Linear | Arc):
-                out = self._motion(c, aff, nf, last, ctx)
-                last = add_offsets(out.end, nf)
-                if out is c and aff is None and nf is frame:
-                    through = c
-                yield out
-            elif isinstance(c, Cycle):  # kept whole for the G-code backend (untransformed frames only)
-                last = add_offsets(c.holes[-1], nf)
-                yield c if nf is frame else replace(c, frame=nf)
+                cmds: Iterable[Command] = x.commands()
             else:
-                yield c if nf is frame else replace(c, frame=nf)
+                cmds = (x,)
+            for c in cmds:
+                frame = c.frame
+                if t_frame is not None:
+                    if frame is t_frame and isinstance(c, _MOTIONS) and c.start == t_end:
+                        t_end = c.end
+                        yield c
+                        continue
+                    last = add_offsets(t_end, t_frame)
+                    t_frame = None
+                entry = cache.get(id(frame))
+                if entry is None or entry[0] is not frame:
+                    aff = self.affine(frame)
+                    entry = cache[id(frame)] = (frame, aff, self.strip(frame, aff))
+                _, aff, nf = entry
+                if isinstance(c, Rapid | Linear | Arc):
+                    out = self._motion(c, aff, nf, last, ctx)
+                    last = add_offsets(out.end, nf)
+                    if out is c and aff is None and nf is frame:
+                        t_frame, t_end = frame, c.end
+                    yield out
+                elif isinstance(c, Cycle):  # kept whole for the G-code backend (untransformed frames only)
+                    last = add_offsets(c.holes[-1], nf)
+                    yield c if nf is frame else replace(c, frame=nf)
+                else:
+                    yield c if nf is frame else replace(c, frame=nf)
 
     def _motion(self, c: Rapid | Linear | Arc, aff: Affine | None, nf: Frame, last: Vec6 | None,
                 ctx: PassContext) -> Rapid | Linear | Arc:
