@@ -17,7 +17,6 @@ from dataclasses import dataclass
 from typing import Any
 
 from cncc.backends.canon_format import CanonFormat
-from cncc.ir.batch import Item, MoveBatch
 from cncc.ir import (
     MODE_TYPES,
     Arc,
@@ -66,6 +65,7 @@ from cncc.ir import (
     Wait,
     WriteToolTable,
 )
+from cncc.ir.batch import Item, MoveBatch
 
 PREFIX = " N..... "
 _PLANES = {Plane.XY: "CANON_PLANE_XY", Plane.YZ: "CANON_PLANE_YZ", Plane.ZX: "CANON_PLANE_XZ"}
