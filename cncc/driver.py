@@ -367,7 +367,7 @@ def path_items(cmds: Iterable[Item], dialect: Dialect, machine: MachineModel, op
     except SpecError as exc:  # compile_files checks the spec first; other callers learn here
         sink.emit(dg.BAD_PASS_SPEC, NO_SPAN, f"-p '{opts.passes}': {exc.message}")
         return iter(())
-    return pm.run(passes, cmds, ctx)
+    return pm.run_items(passes, cmds, ctx)
 
 
 def check_pipeline(opts: Options, sources: SourceMap, sink: DiagnosticSink) -> bool:
@@ -525,8 +525,11 @@ def new_sink(opts: Options) -> DiagnosticSink:
     return DiagnosticSink(werror=opts.werror, policy=opts.policy)
 
 
-def compile_files(opts: Options, stdin: TextIO | None = None) -> Result:
-    sink = new_sink(opts)
+def compile_files(opts: Options, stdin: TextIO | None = None, out: Callable[[str], Any] | None = None,
+                  sink: DiagnosticSink | None = None) -> Result:
+    """Compile ``opts.inputs``; the output text is ``Result.output``, or, with ``out``, handed to
+    ``out`` piece by piece as the backend makes it (streaming: :func:`compile_to`)."""
+    sink = sink if sink is not None else new_sink(opts)
     sources = SourceMap()
     result = Result(sink, sources)
     if opts.emit not in EMIT_KINDS:
@@ -544,7 +547,7 @@ def compile_files(opts: Options, stdin: TextIO | None = None) -> Result:
 
     ins = instrumentation(opts, sources)
     manager = PassManager(ins)
-    chunks: list[str] = []
+    chunks = _Pieces(out)
     inis: dict[str, Any] = {}
     base_dialect, base_machine, base_opts = dialect, machine, opts
     for path in base_opts.inputs or ["-"]:
@@ -583,9 +586,66 @@ def compile_files(opts: Options, stdin: TextIO | None = None) -> Result:
         backend = partial(run_backend, cmds, src, sources, dialect, machine, opts, sink, keep_runs=result.runs,
                           manager=manager)
         chunks.extend(manager.timed(manager.call(row, backend), row))
-    result.output = "".join(chunks)
+    result.output = chunks.finish()
     result.pass_report = pass_report(ins, opts, sink)
     return result
+
+
+class _Pieces:
+    """The output pieces: kept (joined at the end), or passed on to ``out`` in blocks of about
+    ``BLOCK`` characters, so that memory holds one block, not the output."""
+
+    BLOCK = 1 << 16
+
+    def __init__(self, out: Callable[[str], Any] | None) -> None:
+        self.out, self.size = out, 0
+        self.parts: list[str] = []
+
+    def extend(self, pieces: Iterable[str]) -> None:
+        parts, out = self.parts, self.out
+        for piece in pieces:
+            parts.append(piece)
+            if out is not None:
+                self.size += len(piece)
+                if self.size >= self.BLOCK:
+                    out("".join(parts))
+                    parts.clear()
+                    self.size = 0
+
+    def finish(self) -> str:
+        text = "".join(self.parts)
+        self.parts = []
+        if self.out is None:
+            return text
+        if text:
+            self.out(text)
+        return ""
+
+
+def streams_output(opts: Options) -> bool:
+    """True when the command line may stream the output as it is made (:func:`compile_to`)."""
+    return not (opts.syntax_only or opts.list_deps or writes_own_output(opts))
+
+
+def compile_to(opts: Options, stdout: TextIO | None = None) -> tuple[Result, bool]:
+    """Compile and write the output as it is made: to standard output, or to ``opts.output``
+    through :func:`write_stream` (a regular file atomically: a temporary file renamed into place
+    when no error was reported; a device or FIFO in place) -- peak memory holds a block of the
+    output, not all of it.  (Result, whether the output was written)."""
+    sink = new_sink(opts)
+    path = opts.output
+    if path in (None, "-"):
+        stream = stdout or sys.stdout
+        return compile_files(opts, out=stream.write, sink=sink), True
+    done: list[Result] = []
+
+    def write(fh: IO[bytes]) -> None:
+        done.append(compile_files(opts, out=lambda text: fh.write(text.encode("utf-8")), sink=sink))
+
+    written = write_stream(path, opts.inputs, sink, write)
+    if not done:  # refused or not writable before compiling: compile for the diagnostics alone
+        done.append(compile_files(opts, out=lambda text: None, sink=sink))
+    return done[0], written
 
 
 def _file_setup(base_opts: Options, base_dialect: Dialect, base_machine: MachineModel, path: str,

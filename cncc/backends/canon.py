@@ -131,7 +131,7 @@ def canon_lines(cmds: Iterable[Item], *, initial_frame: Frame | None = None,
             if g92 != last_g92:
                 yield PREFIX + g92
                 last_g92 = g92
-        if type(c) is _Text:
+        if isinstance(c, _Text):
             yield c.text
             continue
         line = _one_line(c, fmt)
@@ -167,7 +167,7 @@ def _texts(items: Iterable[Item], fmt: CanonFormat, skip: list[int]) -> Iterator
     """The commands, with each batch of moves as its text (or, when that cannot be made exactly,
     or while folded commands are skipped, as its commands)."""
     for x in items:
-        if type(x) is MoveBatch:
+        if isinstance(x, MoveBatch):
             text = None
             if not skip[0]:
                 from cncc.backends.canon_batch import batch_text
@@ -177,8 +177,8 @@ def _texts(items: Iterable[Item], fmt: CanonFormat, skip: list[int]) -> Iterator
                 yield from x.commands()
             else:
                 yield _Text(x.frame, text)
-        else:
-            yield x  # type: ignore[misc]
+        elif not isinstance(x, MoveBatch):
+            yield x
 
 
 def _report(c: InterpreterReport, fmt: CanonFormat) -> Iterator[str]:

@@ -24,7 +24,8 @@ _LIMIT = 1e15  # |v * 10**N| above this: no safe integer digits
 def constant(text: str, rows: int) -> Matrix:
     """``text`` on every row."""
     b = np.frombuffer(text.encode("ascii"), dtype=np.uint8)
-    return np.broadcast_to(b, (rows, len(b)))
+    out: Matrix = np.broadcast_to(b, (rows, len(b)))
+    return out
 
 
 def choice(texts: list[str], index: np.ndarray[Any, Any]) -> Matrix:
@@ -33,7 +34,8 @@ def choice(texts: list[str], index: np.ndarray[Any, Any]) -> Matrix:
     table = np.zeros((len(texts), width), dtype=np.uint8)
     for k, t in enumerate(texts):
         table[k, :len(t)] = np.frombuffer(t.encode("ascii"), dtype=np.uint8)
-    return table[index]
+    out: Matrix = table[index]
+    return out
 
 
 def _digits(a: np.ndarray[Any, Any], width: int, lead_pad: bool) -> Matrix:
@@ -93,7 +95,8 @@ def join_rows(parts: list[Matrix]) -> Matrix:
 def text_of(rows: Matrix) -> str:
     """The rows one after the other, padding dropped."""
     flat = np.ascontiguousarray(rows).ravel()
-    return flat[flat != PAD].tobytes().decode("ascii")
+    text: str = flat[flat != PAD].tobytes().decode("ascii")
+    return text
 
 
 def stack(blocks: list[Matrix]) -> list[Matrix]:

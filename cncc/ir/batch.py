@@ -153,10 +153,10 @@ def _vec(row: Any) -> Vec6:
 def expand(items: Iterable[Item]) -> Iterator[Command]:
     """``items`` with every batch replaced by its commands."""
     for x in items:
-        if type(x) is MoveBatch:
+        if isinstance(x, MoveBatch):
             yield from x.commands()
         else:
-            yield x  # type: ignore[misc]
+            yield x
 
 
 def command_count(items: Iterable[Item]) -> int:

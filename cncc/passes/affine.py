@@ -130,7 +130,7 @@ class AffinePass(Pass):
         t_frame: Frame | None = None  # frame and end of the last motion passed through
         t_end: Vec6 = ZERO6
         for x in items:
-            if type(x) is MoveBatch:
+            if isinstance(x, MoveBatch):
                 frame = x.frame
                 if t_frame is not None:
                     if frame is t_frame and x.start0 == t_end and x.passes_whole:

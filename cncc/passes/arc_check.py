@@ -61,13 +61,13 @@ class ArcCheck(Pass):
         """A batch whose arcs all pass clearly (a margin above the rounding of the vectorised radii)
         passes whole; any other goes command by command."""
         for x in items:
-            if type(x) is MoveBatch:
+            if isinstance(x, MoveBatch):
                 if self._clearly_fine(x):
                     yield x
                 else:
                     yield from self.run(x.commands(), ctx)
             else:
-                yield from self.run((x,), ctx)  # type: ignore[arg-type]
+                yield from self.run((x,), ctx)
 
     def _clearly_fine(self, b: MoveBatch) -> bool:
         import numpy as np

@@ -92,7 +92,7 @@ class CutterComp(Pass):
         t_frame: Frame | None = None  # frame and end of the last motion passed through
         t_end: Vec6 = ZERO6
         for x in items:
-            if type(x) is MoveBatch:
+            if isinstance(x, MoveBatch):
                 if t_frame is not None and x.frame is t_frame and x.start0 == t_end and x.passes_whole:
                     t_end = x.last_end
                     yield x

@@ -35,7 +35,7 @@ class PolarPass(Pass):
             if f.polar is None:
                 yield c
                 continue
-            if type(c) is MoveBatch:  # the front end makes batches outside G16 only; should one come
+            if isinstance(c, MoveBatch):  # the front end makes batches outside G16 only; should one come
                 yield from self.run(c.commands(), ctx)
                 continue
             entry = cache.get(id(f))

@@ -45,7 +45,7 @@ class ToMachine(Pass):
                 entry = cache[id(f)] = (f, nf)
             nf = entry[1]
             o = f.total_offset_mm
-            if type(c) is MoveBatch:  # every row and its F word shifted at once
+            if isinstance(c, MoveBatch):  # every row and its F word shifted at once
                 if nf is f:
                     yield c
                 else:

@@ -48,7 +48,7 @@ class ToolLength(Pass):
                 nf = f if f.tool_length_mm == 0.0 else replace(f, tool_length_mm=0.0)
                 entry = cache[id(f)] = (f, nf)
             nf = entry[1]
-            if type(x) is MoveBatch:
+            if isinstance(x, MoveBatch):
                 out = _batch(x, nf, last)
                 if out is not None:
                     yield out

@@ -198,8 +198,13 @@ class PassManager:
         ins = self.instrument
         return ins.clock.call(row, fn) if ins is not None and ins.time_passes else fn()
 
-    def run(self, passes: Iterable[Pass], cmds: Iterable[Item], ctx: PassContext, *,
-            stage: str = "path", label: str = "") -> Iterator[Item]:
+    def run(self, passes: Iterable[Pass], cmds: Iterable[Command], ctx: PassContext, *,
+            stage: str = "path", label: str = "") -> Iterator[Command]:
+        """:meth:`run_items` over commands, giving commands."""
+        return expand(self.run_items(passes, cmds, ctx, stage=stage, label=label))
+
+    def run_items(self, passes: Iterable[Pass], cmds: Iterable[Item], ctx: PassContext, *,
+                  stage: str = "path", label: str = "") -> Iterator[Item]:
         """The commands (and batches of moves, :mod:`cncc.ir.batch`) through ``passes`` in order
         (lazily); each pass gets batches only if it works on them (:meth:`Pass.run_items`), and the
         instruments see the commands (the batches expanded).  ``stage="plan"`` continues the
