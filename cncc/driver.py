@@ -705,7 +705,7 @@ def run_backend(items: Iterator[Item], src: SourceFile, sources: SourceMap, dial
             cmd_list = list(cmds)
             runs = timing_runs(cmd_list, machine, opts, sink, manager)
             cmds = iter(annotated_commands(cmd_list, runs, sources, src.name, dialect))
-        return emit_gcode(cmds, target, eopts, sink)
+        return emit_gcode(cmds if opts.expand and opts.annotate_time else items, target, eopts, sink)
     if opts.emit == "timing":
         from cncc.backends.timing import timing_report
         from cncc.backends.timing.progress import track_source
