@@ -132,22 +132,22 @@ class AffinePass(Pass):
         for x in items:
             if isinstance(x, MoveBatch):
                 frame = x.frame
-                if t_frame is not None:
-                    if frame is t_frame and x.start0 == t_end and x.passes_whole:
-                        t_end = x.last_end
+                if x.passes_whole:  # else its commands one by one (the fast path below still applies)
+                    if t_frame is not None:
+                        if frame is t_frame and x.start0 == t_end:
+                            t_end = x.last_end
+                            yield x
+                            continue
+                        last = add_offsets(t_end, t_frame)
+                        t_frame = None
+                    entry = cache.get(id(frame))
+                    if entry is None or entry[0] is not frame:
+                        aff = self.affine(frame)
+                        entry = cache[id(frame)] = (frame, aff, self.strip(frame, aff))
+                    if entry[1] is None and entry[2] is frame and (last is None or sub_offsets(last, frame) == x.start0):
+                        t_frame, t_end = frame, x.last_end  # as the first move would, the rest follow
                         yield x
                         continue
-                    last = add_offsets(t_end, t_frame)
-                    t_frame = None
-                entry = cache.get(id(frame))
-                if entry is None or entry[0] is not frame:
-                    aff = self.affine(frame)
-                    entry = cache[id(frame)] = (frame, aff, self.strip(frame, aff))
-                if (entry[1] is None and entry[2] is frame and x.passes_whole
-                        and (last is None or sub_offsets(last, frame) == x.start0)):
-                    t_frame, t_end = frame, x.last_end  # as the first move would, the rest follow
-                    yield x
-                    continue
                 cmds: Iterable[Command] = x.commands()
             else:
                 cmds = (x,)

@@ -93,12 +93,12 @@ class CutterComp(Pass):
         t_end: Vec6 = ZERO6
         for x in items:
             if isinstance(x, MoveBatch):
-                if t_frame is not None and x.frame is t_frame and x.start0 == t_end and x.passes_whole:
+                if x.passes_whole and t_frame is not None and x.frame is t_frame and x.start0 == t_end:
                     t_end = x.last_end
                     yield x
                     continue
-                if (t_frame is None and comp.pending is None and comp.last is None and not comp.was_on and _off(x.frame)
-                        and x.passes_whole):
+                if (x.passes_whole and t_frame is None and comp.pending is None and comp.last is None
+                        and not comp.was_on and _off(x.frame)):
                     t_frame, t_end = x.frame, x.last_end
                     yield x
                     continue

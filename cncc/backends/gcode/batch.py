@@ -18,7 +18,9 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from cncc.backends import numtext as nt
+from cncc.backends.gcode.frames import add, sub
 from cncc.backends.gcode.numbers import LARGEST, fixed
+from cncc.ir import Frame
 from cncc.ir.batch import ARC, LINEAR, MoveBatch
 from cncc.source import Span
 
@@ -57,7 +59,26 @@ def _plain(em: GcodeEmitter, b: MoveBatch) -> bool:
     f = b.frame
     return (em.probe is None and not em.call_depth and not em.in_alt and not em.opt.line_numbers
             and not em.g91_block and em.qpos is not None and not f.incremental and not em.all_axes
-            and em.cycle_initial is None and em.held == f.held_axes and not em.g92_force)
+            and em.cycle_initial is None and em.held == f.held_axes and _synced(em, f))
+
+
+def _synced(em: GcodeEmitter, f: Frame) -> bool:
+    """:meth:`GcodeEmitter._sync` of ``f`` writes nothing and changes nothing (as after the row before)."""
+    tf, t = em.tf, em.t
+    if em.g92_force or tf.work_mm is None or (em.forced is None and f.units is not em.units) or f.plane is not em.plane:
+        return False
+    if f.work_index != tf.work_index and f.work_index in t.work:
+        return False
+    if sub(f.g92_offset_mm, tf.g92_in_local_mm) != tf.g92_mm:
+        return False
+    if add(f.local_offset_mm, tf.g92_in_local_mm) != tf.local_mm and t.has("local_offset"):
+        return False
+    if (f.tool_length_mm, f.tool_length_index) != (tf.tool_mm, tf.tool_index):
+        return False
+    if tf.fold(f, False) != em.fold:
+        return False
+    return not ((f.mirror != em.mirror and t.has("mirror_on")) or (f.rotation != em.rotation and t.has("rotate_on"))
+                or (f.scaling != em.scaling and t.has("scale_on")))
 
 
 def _counts(values: np.ndarray[Any, Any], decimals: int) -> np.ndarray[Any, Any] | None:
@@ -102,7 +123,7 @@ def _segment(em: GcodeEmitter, b: MoveBatch, lo: int, hi: int) -> str | None:
             return None
         q[:, axis] = col
     prev = np.empty_like(q)
-    prev[0] = em.qpos
+    prev[0] = em.qpos or [0] * 6  # never None here (_plain)
     prev[1:] = q[:-1]
     changed = q != prev
     if not bool(changed.any(axis=1).all()):  # a null move: the emitter chooses its one word
