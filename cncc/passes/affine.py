@@ -144,7 +144,8 @@ class AffinePass(Pass):
                     if entry is None or entry[0] is not frame:
                         aff = self.affine(frame)
                         entry = cache[id(frame)] = (frame, aff, self.strip(frame, aff))
-                    if entry[1] is None and entry[2] is frame and (last is None or sub_offsets(last, frame) == x.start0):
+                    if entry[1] is None and entry[2] is frame and (
+                            last is None or sub_offsets(last, frame) == x.start0):
                         t_frame, t_end = frame, x.last_end  # as the first move would, the rest follow
                         yield x
                         continue
