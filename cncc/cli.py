@@ -393,17 +393,18 @@ def write_rules(result: Any, opts: Any, ns: argparse.Namespace) -> None:
 
 def run(opts: Any, rep: Reporting | None = None, ns: argparse.Namespace | None = None) -> int:
     from cncc import diagnostics as dg
-    from cncc.driver import compile_files, write_output, writes_own_output
+    from cncc.driver import compile_files, compile_to, streams_output, write_output, writes_own_output
     from cncc.numwarn import recorded, to_diagnostics
 
     rep = rep if rep is not None else Reporting()
+    streamed = streams_output(opts)
     with recorded() as caught:  # numpy's RuntimeWarnings become W0909 diagnostics, as in cncc.api
-        result = compile_files(opts)
+        result = compile_to(opts)[0] if streamed else compile_files(opts)
     to_diagnostics(caught, result.sink)
     to_stdout = opts.output in (None, "-")
     if opts.list_deps and ns is not None:
         write_rules(result, opts, ns)
-    elif not opts.syntax_only and not writes_own_output(opts) and (
+    elif not streamed and not opts.syntax_only and not writes_own_output(opts) and (
             not result.sink.has_errors or (result.output and to_stdout)):
         write_output(result.output, opts.output, opts.inputs, result.sink)
     if ns is not None and (ns.write_deps or ns.write_deps_user) and not opts.list_deps:

@@ -13,15 +13,17 @@ import sys
 from collections.abc import Callable, Iterable, Iterator
 from dataclasses import dataclass, field
 from functools import partial
-from typing import IO, Any, TextIO
+from typing import IO, Any, TextIO, TypeVar
 
 from cncc import diagnostics as dg
 from cncc.diagnostics import DiagnosticSink, WarningPolicy
 from cncc.dialects import Dialect, DialectError, load_dialect
 from cncc.ir import Command, Frame, Units, Vec6
+from cncc.ir.batch import Item
 from cncc.ir.machine import Axis, MachineModel
 from cncc.source import NO_SPAN, SourceFile, SourceMap, Span
 
+T = TypeVar("T")
 MACHINE_EMITS = ("timing", "pulses")  # backends that read machine coordinates
 EMIT_KINDS = ("canon", "ir", "gcode", "timing", "pulses", "none")
 DEFAULT_DIALECT = "syntec"
@@ -224,6 +226,20 @@ def front_end(src: SourceFile, dialect: Dialect, machine: MachineModel, opts: Op
                  macro_options(opts, sink, sources, deps, ini))
 
 
+def front_end_items(src: SourceFile, dialect: Dialect, machine: MachineModel, opts: Options,
+                    sink: DiagnosticSink, sources: SourceMap | None = None, deps: list[str] | None = None,
+                    ini: Any = None) -> Iterator[Item]:
+    """:func:`front_end`, with runs of plain moves as :class:`cncc.ir.batch.MoveBatch` items where the
+    front end makes them (what :func:`compile_files` streams through the passes)."""
+    from cncc.frontend import lower
+
+    if ini is None and opts.ini_file:
+        ini = load_ini(opts, sink, sources)
+    iopts = interp_options(opts, machine, sink)
+    iopts.batches = True
+    return lower(src, dialect, sink, iopts, macro_options(opts, sink, sources, deps, ini))
+
+
 def interp_options(opts: Options, machine: MachineModel, sink: DiagnosticSink) -> Any:
     """The interpreter's tables: work offsets, tool lengths and radii, the machine's reference
     points and M codes, the start position (the CLI, the API and the language server alike)."""
@@ -337,6 +353,14 @@ def path_passes(cmds: Iterable[Command], dialect: Dialect, machine: MachineModel
                 sink: DiagnosticSink, manager: Any = None) -> Iterator[Command]:
     """The path stage of the pipeline (cncc/pipeline/builder.py) over the front end's commands;
     ``manager``: the compilation's :class:`cncc.pipeline.manager.PassManager` (instrumented)."""
+    from cncc.ir.batch import expand
+
+    return expand(path_items(cmds, dialect, machine, opts, sink, manager))
+
+
+def path_items(cmds: Iterable[Item], dialect: Dialect, machine: MachineModel, opts: Options,
+               sink: DiagnosticSink, manager: Any = None) -> Iterator[Item]:
+    """:func:`path_passes` over commands and batches of moves (:mod:`cncc.ir.batch`)."""
     from cncc.dialects.errors import controller_sink
     from cncc.passes import PassContext
     from cncc.pipeline.builder import path_passes as build_path
@@ -356,7 +380,7 @@ def path_passes(cmds: Iterable[Command], dialect: Dialect, machine: MachineModel
     except SpecError as exc:  # compile_files checks the spec first; other callers learn here
         sink.emit(dg.BAD_PASS_SPEC, NO_SPAN, f"-p '{opts.passes}': {exc.message}")
         return iter(())
-    return pm.run(passes, cmds, ctx)
+    return pm.run_items(passes, cmds, ctx)
 
 
 def check_pipeline(opts: Options, sources: SourceMap, sink: DiagnosticSink) -> bool:
@@ -422,8 +446,11 @@ def output_dialect(dialect: Dialect, opts: Options, sink: DiagnosticSink) -> Dia
     return resolve_dialect(Options(dialect=opts.target, dialect_options=opts.target_options), sink)
 
 
-def translation_prepare(cmds: Iterable[Command], dialect: Dialect, opts: Options,
-                        sink: DiagnosticSink) -> tuple[Iterable[Command], frozenset[str], frozenset[Any]]:
+TRANSFORM_CODES = (("rotate_on", "rotate_off"), ("mirror_on", "mirror_off"), ("scale_on", "scale_off"))
+
+
+def translation_prepare(cmds: Iterable[Item], dialect: Dialect, opts: Options,
+                        sink: DiagnosticSink) -> tuple[Iterable[Item], frozenset[str], frozenset[Any]]:
     """Cycles the target cannot keep expanded now (before the transforms), notes for what cncc applies;
     the kept cycle kinds and the rotation, mirror and scaling records the target runs itself."""
     from cncc.backends.gcode import make_target
@@ -435,7 +462,15 @@ def translation_prepare(cmds: Iterable[Command], dialect: Dialect, opts: Options
     if target is None:
         return cmds, frozenset(), frozenset()
     tgt = make_target(target)
-    cmds = list(cmds)  # the keep decision looks at a whole transform before its first move
+    if not any(tgt.has(on) and tgt.has(off) for on, off in TRANSFORM_CODES):  # nothing to keep: stream
+        return prepare(cmds, tgt, expand, sink, frozenset()), kept_cycle_kinds(tgt), frozenset()
+    from cncc.ir.batch import expand as expand_batches
+
+    items = list(cmds)  # the keep decision looks at a whole transform before its first move
+    if not any(x.frame.rotation is not None or x.frame.mirror is not None or x.frame.scaling is not None
+               for x in items):
+        return prepare(items, tgt, expand, sink, frozenset()), kept_cycle_kinds(tgt), frozenset()
+    listed = list(expand_batches(items))
 
     def step_mm(units: Units) -> float:
         unit = Units.INCH if opts.units == "inch" else Units.MM if opts.units == "mm" else units
@@ -443,8 +478,8 @@ def translation_prepare(cmds: Iterable[Command], dialect: Dialect, opts: Options
         chosen = opts.decimals_inch if unit is Units.INCH else opts.decimals_mm
         return 10.0 ** -(default if chosen is None else chosen) * unit.mm_per_unit
 
-    kept = kept_transforms(cmds, tgt, step_mm)
-    return prepare(cmds, tgt, expand, sink, kept), kept_cycle_kinds(tgt), kept
+    kept = kept_transforms(listed, tgt, step_mm)
+    return prepare(listed, tgt, expand, sink, kept), kept_cycle_kinds(tgt), kept
 
 
 def guessed_dialect(src: SourceFile, opts: Options, sink: DiagnosticSink) -> Dialect | None:
@@ -494,7 +529,7 @@ def file_options(opts: Options, path: str, src: SourceFile, sink: DiagnosticSink
     return fopts
 
 
-def until_limit(cmds: Iterable[Command], sink: DiagnosticSink) -> Iterator[Command]:
+def until_limit(cmds: Iterable[T], sink: DiagnosticSink) -> Iterator[T]:
     """-fmax-errors=N: stop the program once N errors were reported."""
     for cmd in cmds:
         yield cmd
@@ -506,8 +541,11 @@ def new_sink(opts: Options) -> DiagnosticSink:
     return DiagnosticSink(werror=opts.werror, policy=opts.policy)
 
 
-def compile_files(opts: Options, stdin: TextIO | None = None) -> Result:
-    sink = new_sink(opts)
+def compile_files(opts: Options, stdin: TextIO | None = None, out: Callable[[str], Any] | None = None,
+                  sink: DiagnosticSink | None = None) -> Result:
+    """Compile ``opts.inputs``; the output text is ``Result.output``, or, with ``out``, handed to
+    ``out`` piece by piece as the backend makes it (streaming: :func:`compile_to`)."""
+    sink = sink if sink is not None else new_sink(opts)
     sources = SourceMap()
     result = Result(sink, sources)
     if opts.emit not in EMIT_KINDS:
@@ -525,7 +563,7 @@ def compile_files(opts: Options, stdin: TextIO | None = None) -> Result:
 
     ins = instrumentation(opts, sources)
     manager = PassManager(ins)
-    chunks: list[str] = []
+    chunks = _Pieces(out)
     inis: dict[str, Any] = {}
     ini_seen: dict[str, bool] = {}  # its bad values reported once
     base_dialect, base_machine, base_opts = dialect, machine, opts
@@ -554,10 +592,13 @@ def compile_files(opts: Options, stdin: TextIO | None = None) -> Result:
             continue
         if opts.syntax_only and fast_syntax_only(src, dialect, machine, opts, sink, sources, deps, ini, manager):
             continue
-        cmds = path_passes(until_limit(front_end(src, dialect, machine, opts, sink, sources, deps, ini), sink),
-                           dialect, machine, opts, sink, manager)
         if opts.expand:
-            cmds = with_line_map(cmds, sources)
+            cmds: Iterator[Item] = with_line_map(path_passes(until_limit(
+                front_end(src, dialect, machine, opts, sink, sources, deps, ini), sink), dialect, machine, opts,
+                sink, manager), sources)
+        else:
+            cmds = path_items(until_limit(front_end_items(src, dialect, machine, opts, sink, sources, deps, ini),
+                                          sink), dialect, machine, opts, sink, manager)
         if opts.syntax_only:
             for _ in cmds:
                 pass
@@ -566,7 +607,7 @@ def compile_files(opts: Options, stdin: TextIO | None = None) -> Result:
         backend = partial(run_backend, cmds, src, sources, dialect, machine, opts, sink, keep_runs=result.runs,
                           manager=manager)
         chunks.extend(manager.timed(manager.call(row, backend), row))
-    result.output = "".join(chunks)
+    result.output = chunks.finish()
     result.pass_report = pass_report(ins, opts, sink)
     return result
 
@@ -610,6 +651,61 @@ def fast_syntax_only(src: SourceFile, dialect: Dialect, machine: MachineModel, o
                              dialect, machine, opts, sink, manager):
             pass
     return True
+class _Pieces:
+    """The output pieces: kept (joined at the end), or passed on to ``out`` in blocks of about
+    ``BLOCK`` characters, so that memory holds one block, not the output."""
+
+    BLOCK = 1 << 16
+
+    def __init__(self, out: Callable[[str], Any] | None) -> None:
+        self.out, self.size = out, 0
+        self.parts: list[str] = []
+
+    def extend(self, pieces: Iterable[str]) -> None:
+        parts, out = self.parts, self.out
+        for piece in pieces:
+            parts.append(piece)
+            if out is not None:
+                self.size += len(piece)
+                if self.size >= self.BLOCK:
+                    out("".join(parts))
+                    parts.clear()
+                    self.size = 0
+
+    def finish(self) -> str:
+        text = "".join(self.parts)
+        self.parts = []
+        if self.out is None:
+            return text
+        if text:
+            self.out(text)
+        return ""
+
+
+def streams_output(opts: Options) -> bool:
+    """True when the command line may stream the output as it is made (:func:`compile_to`)."""
+    return not (opts.syntax_only or opts.list_deps or writes_own_output(opts))
+
+
+def compile_to(opts: Options, stdout: TextIO | None = None) -> tuple[Result, bool]:
+    """Compile and write the output as it is made: to standard output, or to ``opts.output``
+    through :func:`write_stream` (a regular file atomically: a temporary file renamed into place
+    when no error was reported; a device or FIFO in place) -- peak memory holds a block of the
+    output, not all of it.  (Result, whether the output was written)."""
+    sink = new_sink(opts)
+    path = opts.output
+    if path in (None, "-"):
+        stream = stdout or sys.stdout
+        return compile_files(opts, out=stream.write, sink=sink), True
+    done: list[Result] = []
+
+    def write(fh: IO[bytes]) -> None:
+        done.append(compile_files(opts, out=lambda text: fh.write(text.encode("utf-8")), sink=sink))
+
+    written = write_stream(path, opts.inputs, sink, write)
+    if not done:  # refused or not writable before compiling: compile for the diagnostics alone
+        done.append(compile_files(opts, out=lambda text: None, sink=sink))
+    return done[0], written
 
 
 def _file_setup(base_opts: Options, base_dialect: Dialect, base_machine: MachineModel, path: str,
@@ -637,14 +733,17 @@ def _file_setup(base_opts: Options, base_dialect: Dialect, base_machine: Machine
     return opts, dialect, machine
 
 
-def run_backend(cmds: Iterator[Command], src: SourceFile, sources: SourceMap, dialect: Dialect,
+def run_backend(items: Iterator[Item], src: SourceFile, sources: SourceMap, dialect: Dialect,
                 machine: MachineModel, opts: Options, sink: DiagnosticSink,
                 keep_runs: list[Any] | None = None, manager: Any = None) -> Iterator[str]:
+    from cncc.ir.batch import expand as expand_batches
+
     frame0 = Frame(units=Units.INCH if dialect.default_units == "inch" else Units.MM)
+    cmds = expand_batches(items)  # lazy: the backends that take batches of moves read ``items``
     if opts.emit == "canon":
         from cncc.backends.canon import emit_canon
 
-        return emit_canon(cmds, frame0, dialect.raw.get("canon"))
+        return emit_canon(items, frame0, dialect.raw.get("canon"))
     if opts.emit == "ir":
         from cncc.backends.irdump import dump_ir
 
@@ -666,7 +765,7 @@ def run_backend(cmds: Iterator[Command], src: SourceFile, sources: SourceMap, di
             cmd_list = list(cmds)
             runs = timing_runs(cmd_list, machine, opts, sink, manager)
             cmds = iter(annotated_commands(cmd_list, runs, sources, src.name, dialect))
-        return emit_gcode(cmds, target, eopts, sink)
+        return emit_gcode(cmds if opts.expand and opts.annotate_time else items, target, eopts, sink)
     if opts.emit == "timing":
         from cncc.backends.timing import timing_report
         from cncc.backends.timing.progress import track_source
@@ -682,7 +781,7 @@ def run_backend(cmds: Iterator[Command], src: SourceFile, sources: SourceMap, di
     if opts.emit == "pulses":
         return pulse_backend(cmds, machine, opts, sink, manager)
     if opts.emit == "none":
-        for _ in cmds:
+        for _ in items:
             pass
         return iter(())
     sink.emit(dg.NOT_SUPPORTED, NO_SPAN, f"--emit={opts.emit} is not available yet")

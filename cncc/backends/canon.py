@@ -13,6 +13,7 @@ driver runs the path passes but not the lowering to machine coordinates).
 from __future__ import annotations
 
 from collections.abc import Iterable, Iterator, Mapping
+from dataclasses import dataclass
 from typing import Any
 
 from cncc.backends.canon_format import CanonFormat
@@ -64,6 +65,7 @@ from cncc.ir import (
     Wait,
     WriteToolTable,
 )
+from cncc.ir.batch import Item, MoveBatch
 
 PREFIX = " N..... "
 _PLANES = {Plane.XY: "CANON_PLANE_XY", Plane.YZ: "CANON_PLANE_YZ", Plane.ZX: "CANON_PLANE_XZ"}
@@ -98,7 +100,7 @@ def _offsets(frame: Frame) -> tuple[str, str]:
     return g5x, g92
 
 
-def canon_lines(cmds: Iterable[Command], *, initial_frame: Frame | None = None,
+def canon_lines(cmds: Iterable[Item], *, initial_frame: Frame | None = None,
                 fmt: CanonFormat | None = None) -> Iterator[str]:
     """Yield the trace lines (without newlines) for ``cmds``; ``fmt`` words the calls (default: cncc's)."""
     fmt = fmt or CanonFormat()
@@ -111,12 +113,12 @@ def canon_lines(cmds: Iterable[Command], *, initial_frame: Frame | None = None,
     yield PREFIX + "SET_FEED_REFERENCE(CANON_XYZ)"
     yield PREFIX + "ON_RESET()"
     last_g5x, last_g92 = g5x, g92
-    skip = 0  # commands folded into one call (RIGID_TAP, NURBS_FEED) that are not written
+    skip = [0]  # commands folded into one call (RIGID_TAP, NURBS_FEED) that are not written
     offsets: dict[int, tuple[Frame, tuple[str, str]]] = {}  # frames are shared: format once each
     coolant = _CoolantTrace(fmt)
-    for c in cmds:
-        if skip:
-            skip -= 1
+    for c in _texts(cmds, fmt, skip):
+        if skip[0]:
+            skip[0] -= 1
             continue
         if coolant.active:
             yield from coolant.before(c)
@@ -134,6 +136,9 @@ def canon_lines(cmds: Iterable[Command], *, initial_frame: Frame | None = None,
             if g92 != last_g92:
                 yield PREFIX + g92
                 last_g92 = g92
+        if isinstance(c, _Text):
+            yield c.text
+            continue
         line = _one_line(c, fmt)
         if line is not None:
             yield PREFIX + line
@@ -142,7 +147,7 @@ def canon_lines(cmds: Iterable[Command], *, initial_frame: Frame | None = None,
             case InterpreterReport():
                 yield from _report(c, fmt)
             case RigidTap() | NurbsFeed() | Probe() if fmt.has(_FOLDED[type(c)]):
-                skip = c.folded
+                skip[0] = c.folded
                 yield from _lines(fmt, _FOLDED[type(c)], **_folded_fields(c))
             case _ if isinstance(c, MODE_TYPES):
                 yield from _set_mode(c, last_g5x, last_g92, fmt)
@@ -167,7 +172,7 @@ class _CoolantTrace:
         self.mist = self.flood = False
         self.held: Coolant | None = None
 
-    def hold(self, c: Command) -> bool:
+    def hold(self, c: object) -> bool:
         if not isinstance(c, Coolant):
             return False
         if c.state is CoolantState.OFF:
@@ -176,7 +181,7 @@ class _CoolantTrace:
         self.mist, self.flood = self.mist or c.state is CoolantState.MIST, self.flood or c.state is CoolantState.FLOOD
         return False
 
-    def before(self, c: Command | None) -> Iterator[str]:
+    def before(self, c: object) -> Iterator[str]:
         if self.held is None:
             return
         self.held = None
@@ -187,6 +192,30 @@ class _CoolantTrace:
         self.mist = self.flood = False
         for k in keys:
             yield from _lines(self.fmt, k)
+@dataclass(frozen=True, slots=True)
+class _Text:
+    """A batch of moves written by :func:`cncc.backends.canon_batch.batch_text`."""
+
+    frame: Frame
+    text: str
+
+
+def _texts(items: Iterable[Item], fmt: CanonFormat, skip: list[int]) -> Iterator[Command | _Text]:
+    """The commands, with each batch of moves as its text (or, when that cannot be made exactly,
+    or while folded commands are skipped, as its commands)."""
+    for x in items:
+        if isinstance(x, MoveBatch):
+            text = None
+            if not skip[0]:
+                from cncc.backends.canon_batch import batch_text
+
+                text = batch_text(x, fmt.feed_in_program_units)
+            if text is None:
+                yield from x.commands()
+            else:
+                yield _Text(x.frame, text)
+        elif not isinstance(x, MoveBatch):
+            yield x
 
 
 def _report(c: InterpreterReport, fmt: CanonFormat) -> Iterator[str]:
@@ -322,7 +351,7 @@ def _arc(c: Arc) -> str:
     return "ARC_FEED(" + ", ".join(args) + ")"
 
 
-def emit_canon(cmds: Iterable[Command], initial_frame: Frame | None = None,
+def emit_canon(cmds: Iterable[Item], initial_frame: Frame | None = None,
                table: Mapping[str, Any] | None = None) -> Iterator[str]:
     """Lines with newlines, for writers; ``table`` is the dialect's ``[canon]`` table."""
     for line in canon_lines(cmds, initial_frame=initial_frame, fmt=CanonFormat(table)):

@@ -27,6 +27,10 @@ def lower_fanuc(src: SourceFile, dialect: Dialect, sink: DiagnosticSink, options
     from cncc.frontend.macro.remap import remaps_cycles
 
     if is_straight_line(src.text, dialect) and not remaps_cycles(dialect):
+        if options.batches:  # runs of plain moves as arrays (numpy, imported only here)
+            from cncc.frontend.fastbatch import lower_batched
+
+            return lower_batched(src, dialect, sink, options)  # type: ignore[return-value]
         return lower_straight(src, dialect, sink, options)
     if needs_executor(src.text, dialect):
         return run_program(src, dialect, sink, options, macro if isinstance(macro, MacroOptions) else None)

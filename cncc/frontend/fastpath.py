@@ -93,10 +93,8 @@ def is_straight_line(text: str, dialect: Dialect) -> bool:
     return _control_codes(dialect).search(upper) is None
 
 
-def lower_straight(  # noqa: C901 - one inlined hot loop: a call per line would cost a third of its time
-    src: SourceFile, dialect: Dialect, sink: DiagnosticSink, opts: InterpOptions,
-    checkpoints: Checkpoints | None = None,
-) -> Iterator[Command]:
+def lower_straight(src: SourceFile, dialect: Dialect, sink: DiagnosticSink, opts: InterpOptions,
+                   checkpoints: Checkpoints | None = None) -> Iterator[Command]:
     """Lower a straight-line program, taking the fast path where it applies.
 
     The interpreter's state is cached in locals while consecutive lines take the
@@ -105,6 +103,30 @@ def lower_straight(  # noqa: C901 - one inlined hot loop: a call per line would 
     parser = Parser(dialect, sink, ParseOptions(strict=opts.strict))
     cp = checkpoints
     it = cp.interp if cp is not None and cp.interp is not None else Interpreter(dialect, sink, src.source_id, opts)
+    pos = cp.start if cp is not None else 0
+    line_no = cp.line if cp is not None else 0
+    return lower_lines(parser, it, src, pos, line_no, cp)
+
+
+@dataclass(slots=True)
+class Resume:
+    """Where :func:`lower_lines` stopped after ``streak`` plain lines in a row (``stopped``), so
+    that a caller (:mod:`cncc.frontend.fastbatch`) can take over at ``pos`` / ``line_no``."""
+
+    streak: int = 0  # stop before the next plain line once this many went in a row (0: never)
+    stopped: bool = False
+    pos: int = 0
+    line_no: int = 0
+
+
+def lower_lines(  # noqa: C901 - one inlined hot loop: a call per line would cost a third of its time
+    parser: Parser, it: Interpreter, src: SourceFile, pos: int, line_no: int, cp: Checkpoints | None = None,
+    resume: Resume | None = None,
+) -> Iterator[Command]:
+    """The lines of ``src`` from offset ``pos`` (0-based line ``line_no``) through ``it``; with
+    ``resume``, stop (state written back) before a plain line once ``resume.streak`` plain lines
+    in a row took the fast path."""
+    dialect = parser.dialect
     text = src.text
     sid = src.source_id
     finditer = CAM_LINES.finditer
@@ -113,8 +135,8 @@ def lower_straight(  # noqa: C901 - one inlined hot loop: a call per line would 
     sp_id, sp_start, sp_end = _SPAN_SET
     l_span, l_frame, l_start, l_end, l_feed, l_motion, l_origin = _LINEAR_SET
     n = len(text)
-    pos = cp.start if cp is not None else 0
-    line_no = cp.line if cp is not None else 0
+    streak_limit = resume.streak if resume is not None else 0
+    streak = 0
     next_cp = line_no if cp is not None else n + 1  # the next line to show the state at
     every = max(1, cp.every) if cp is not None else 1
     stale = True
@@ -133,7 +155,14 @@ def lower_straight(  # noqa: C901 - one inlined hot loop: a call per line would 
         start = m.start()
         if start >= n:
             break
+        if streak >= streak_limit > 0 and start == pos and not stale and resume is not None:
+            it.pos = p
+            if dirty:
+                _write_back(it, cur, feed_prog)
+            resume.stopped, resume.pos, resume.line_no = True, pos, line_no
+            return
         if start != pos:  # the lines in between do not match: general path
+            streak = 0
             if not stale:
                 it.pos = p
             if dirty:
@@ -238,7 +267,9 @@ def lower_straight(  # noqa: C901 - one inlined hot loop: a call per line would 
                                   -1 if motion == "arc_cw" else 1, Plane.XY, feed_mm_min, path)
                     p = q
                     pos = end + 1
+                    streak += 1
                     continue
+        streak = 0
         if end > pos:
             if not stale:
                 it.pos = p

@@ -57,6 +57,7 @@ class InterpOptions:
     strict: bool = False
     start_mm: Vec6 = ZERO6
     machine_m_codes: dict[int, str] = field(default_factory=dict)  # M tenths -> meaning (machine model)
+    batches: bool = False  # the caller takes MoveBatch items (cncc/ir/batch.py) for runs of plain moves
 
 
 @dataclass(slots=True)

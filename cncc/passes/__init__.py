@@ -20,6 +20,7 @@ from typing import TYPE_CHECKING, ClassVar
 from cncc.diagnostics import DiagnosticSink
 from cncc.dialects import Dialect
 from cncc.ir import Command
+from cncc.ir.batch import Item, expand
 from cncc.ir.machine import MachineModel
 
 if TYPE_CHECKING:
@@ -50,6 +51,12 @@ class Pass:
 
     def run(self, cmds: Iterable[Command], ctx: PassContext) -> Iterator[Command]:
         raise NotImplementedError
+
+    def run_items(self, items: Iterable[Item], ctx: PassContext) -> Iterator[Item]:
+        """The pass over a stream that may hold :class:`~cncc.ir.batch.MoveBatch` es (what the pass
+        manager calls).  This default expands the batches into commands for :meth:`run`; a pass
+        that works on batches overrides it (and makes :meth:`run` expand its result)."""
+        return iter(self.run(expand(items), ctx))
 
 
 _REGISTRY: dict[str, type[Pass]] = {}

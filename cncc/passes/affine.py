@@ -28,10 +28,11 @@ from __future__ import annotations
 
 from collections.abc import Iterable, Iterator
 from dataclasses import dataclass, replace
-from typing import ClassVar
+from typing import Any, ClassVar
 
 from cncc import diagnostics as dg
-from cncc.ir import Arc, Command, CompSide, Cycle, Frame, Linear, Plane, Rapid, Vec6
+from cncc.ir import ZERO6, Arc, Command, CompSide, Cycle, Frame, Linear, Plane, Rapid, Vec6
+from cncc.ir.batch import Item, MoveBatch, expand
 from cncc.ir.frame import add_offsets, sub_offsets
 from cncc.passes import Pass, PassContext
 
@@ -118,37 +119,77 @@ class AffinePass(Pass):
         return True
 
     def run(self, cmds: Iterable[Command], ctx: PassContext) -> Iterator[Command]:
+        return expand(self.run_items(cmds, ctx))
+
+    def run_items(self, items: Iterable[Item], ctx: PassContext) -> Iterator[Item]:
         last: Vec6 | None = None  # actual end of the previous motion, program + offsets
         cache: dict[int, tuple[Frame, Affine | None, Frame]] = {}
         # Fast path: once a motion went through unchanged (no transform in its frame), the
-        # next motion in the same frame object that starts where it ended goes through
-        # unchanged too, without per-command work; ``last`` is materialised on leaving.
-        through: Rapid | Linear | Arc | None = None
-        for c in cmds:
-            frame = c.frame
-            if through is not None:
-                if frame is through.frame and isinstance(c, _MOTIONS) and c.start == through.end:
-                    through = c
-                    yield c
-                    continue
-                last = add_offsets(through.end, through.frame)
-                through = None
-            entry = cache.get(id(frame))
-            if entry is None or entry[0] is not frame:
-                aff = self.affine(frame)
-                entry = cache[id(frame)] = (frame, aff, self.strip(frame, aff))
-            _, aff, nf = entry
-            if isinstance(c, Rapid | Linear | Arc):
-                out = self._motion(c, aff, nf, last, ctx)
-                last = add_offsets(out.end, nf)
-                if out is c and aff is None and nf is frame:
-                    through = c
-                yield out
-            elif isinstance(c, Cycle):  # kept whole for the G-code backend (untransformed frames only)
-                last = add_offsets(c.holes[-1], nf)
-                yield c if nf is frame else replace(c, frame=nf)
+        # next motion (or batch of moves) in the same frame object that starts where it ended
+        # goes through unchanged too, without per-command work; ``last`` is materialised on leaving.
+        t_frame: Frame | None = None  # frame and end of the last motion passed through
+        t_end: Vec6 = ZERO6
+        for x in items:
+            if isinstance(x, MoveBatch):
+                frame = x.frame
+                if x.passes_whole:  # else its commands one by one (the fast path below still applies)
+                    if t_frame is not None:
+                        if frame is t_frame and x.start0 == t_end:
+                            t_end = x.last_end
+                            yield x
+                            continue
+                        last = add_offsets(t_end, t_frame)
+                        t_frame = None
+                    entry = cache.get(id(frame))
+                    if entry is None or entry[0] is not frame:
+                        aff = self.affine(frame)
+                        entry = cache[id(frame)] = (frame, aff, self.strip(frame, aff))
+                    if entry[1] is None and entry[2] is frame and (
+                            last is None or sub_offsets(last, frame) == x.start0):
+                        t_frame, t_end = frame, x.last_end  # as the first move would, the rest follow
+                        yield x
+                        continue
+                entry = cache.get(id(frame))
+                if entry is None or entry[0] is not frame:
+                    aff = self.affine(frame)
+                    entry = cache[id(frame)] = (frame, aff, self.strip(frame, aff))
+                if entry[1] is not None:
+                    if t_frame is not None:
+                        last = add_offsets(t_end, t_frame)
+                        t_frame = None
+                    mapped = _mapped(x, entry[1], entry[2], last)
+                    if mapped is not None:
+                        last = add_offsets(mapped.last_end, entry[2])
+                        yield mapped
+                        continue
+                cmds: Iterable[Command] = x.commands()
             else:
-                yield c if nf is frame else replace(c, frame=nf)
+                cmds = (x,)
+            for c in cmds:
+                frame = c.frame
+                if t_frame is not None:
+                    if frame is t_frame and isinstance(c, _MOTIONS) and c.start == t_end:
+                        t_end = c.end
+                        yield c
+                        continue
+                    last = add_offsets(t_end, t_frame)
+                    t_frame = None
+                entry = cache.get(id(frame))
+                if entry is None or entry[0] is not frame:
+                    aff = self.affine(frame)
+                    entry = cache[id(frame)] = (frame, aff, self.strip(frame, aff))
+                _, aff, nf = entry
+                if isinstance(c, Rapid | Linear | Arc):
+                    out = self._motion(c, aff, nf, last, ctx)
+                    last = add_offsets(out.end, nf)
+                    if out is c and aff is None and nf is frame:
+                        t_frame, t_end = frame, c.end
+                    yield out
+                elif isinstance(c, Cycle):  # kept whole for the G-code backend (untransformed frames only)
+                    last = add_offsets(c.holes[-1], nf)
+                    yield c if nf is frame else replace(c, frame=nf)
+                else:
+                    yield c if nf is frame else replace(c, frame=nf)
 
     def _motion(self, c: Rapid | Linear | Arc, aff: Affine | None, nf: Frame, last: Vec6 | None,
                 ctx: PassContext) -> Rapid | Linear | Arc:
@@ -181,6 +222,39 @@ class AffinePass(Pass):
             if aff.det2(c.plane) < 0:
                 turns = -turns
         return Arc(c.span, nf, start, end, center, turns, c.plane, c.feed_mm_min, c.motion, c.origin)
+
+
+def _mapped(b: MoveBatch, aff: Affine, nf: Frame, last: Vec6 | None) -> MoveBatch | None:
+    """The batch with ``aff`` applied to every end point and centre, as :meth:`AffinePass._motion`
+    maps each move in G90; None where the command path must decide: G91, offsets in the new frame
+    (a start re-derived from the offset end may differ in its last bits), a mapped ``-0.0`` (the
+    re-derived start would be ``0.0``), an arc that would not stay a circle (a warning each)."""
+    import numpy as np
+
+    f = b.frame
+    if f.incremental or nf.total_offset_mm != ZERO6 or (nf.rotation is not None and nf.rotation.work):
+        return None
+    arcs = bool((b.kind == 2).any())
+    if arcs and not aff.keeps_plane(b.plane):
+        return None
+    c = aff.center
+    m = aff.linear
+
+    def point(p: np.ndarray[Any, Any]) -> np.ndarray[Any, Any]:
+        d0, d1, d2 = p[:, 0] - c[0], p[:, 1] - c[1], p[:, 2] - c[2]
+        out = p.copy()
+        out[:, 0] = c[0] + (m[0][0] * d0 + m[0][1] * d1 + m[0][2] * d2)
+        out[:, 1] = c[1] + (m[1][0] * d0 + m[1][1] * d1 + m[1][2] * d2)
+        out[:, 2] = c[2] + (m[2][0] * d0 + m[2][1] * d1 + m[2][2] * d2)
+        return out
+
+    end = point(b.end)
+    if bool(((end == 0.0) & np.signbit(end)).any()):
+        return None
+    center = point(b.center) if arcs else b.center
+    start = b.start0 if last is None else sub_offsets(last, nf)
+    turns = -b.turns if arcs and aff.det2(b.plane) < 0 else b.turns
+    return b.with_(frame=nf, start0=start, end=end, center=center, turns=turns)
 
 
 __all__ = ["IDENTITY3", "Affine", "AffinePass", "Mat3", "flip_side"]

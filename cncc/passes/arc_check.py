@@ -21,6 +21,7 @@ from typing import ClassVar
 from cncc import diagnostics as dg
 from cncc.dialects import Dialect
 from cncc.ir import Arc, Command, Units, Vec6
+from cncc.ir.batch import ARC, Item, MoveBatch
 from cncc.ir.frame import MM_PER_INCH
 from cncc.passes import Pass, PassContext, register
 
@@ -57,6 +58,36 @@ class ArcCheck(Pass):
                 yield fixed
             else:
                 yield c
+
+    def run_items(self, items: Iterable[Item], ctx: PassContext) -> Iterator[Item]:
+        """A batch whose arcs all pass clearly (a margin above the rounding of the vectorised radii)
+        passes whole; any other goes command by command."""
+        for x in items:
+            if isinstance(x, MoveBatch):
+                if self._clearly_fine(x):
+                    yield x
+                else:
+                    yield from self.run(x.commands(), ctx)
+            else:
+                yield from self.run((x,), ctx)
+
+    def _clearly_fine(self, b: MoveBatch) -> bool:
+        import numpy as np
+
+        arcs = np.flatnonzero(b.kind == ARC)
+        if len(arcs) == 0:
+            return True
+        i, j = b.plane.first, b.plane.second
+        start, end, center = b.starts()[arcs], b.end[arcs], b.center[arcs]
+        r0 = np.hypot(start[:, i] - center[:, i], start[:, j] - center[:, j])
+        r1 = np.hypot(end[:, i] - center[:, i], end[:, j] - center[:, j])
+        diff = np.abs(r1 - r0)
+        tol = self.abs_tol_inch_mm if self.abs_tol_inch_mm > 0 and b.frame.units is Units.INCH else self.abs_tol_mm
+        margin = 1e-9 + 1e-12 * np.maximum(r0, r1)  # math.hypot and np.hypot may differ in the last bits
+        fine = diff + margin < np.maximum(tol, self.rel_tol * r0) + 1e-9
+        if self.max_abs_factor > 0:
+            fine &= diff + margin < self.max_abs_factor * tol
+        return bool(fine.all())
 
     def _check(self, c: Arc, ctx: PassContext) -> Arc | None:
         p = c.plane

@@ -41,7 +41,8 @@ from typing import ClassVar
 
 from cncc import diagnostics as dg
 from cncc.diagnostics import Related
-from cncc.ir import Arc, Command, CompSide, Cycle, Frame, Linear, OriginKind, Plane, Rapid, Vec6
+from cncc.ir import ZERO6, Arc, Command, CompSide, Cycle, Frame, Linear, OriginKind, Plane, Rapid, Vec6
+from cncc.ir.batch import Item, MoveBatch, expand
 from cncc.ir.frame import add_offsets, sub_offsets
 from cncc.passes import Pass, PassContext, register
 from cncc.passes.comp_geometry import (
@@ -80,29 +81,47 @@ class CutterComp(Pass):
     # or "end_normal" (LinuxCNC): the entry move ends square to itself; the next corner is joined as usual
 
     def run(self, cmds: Iterable[Command], ctx: PassContext) -> Iterator[Command]:
+        return expand(self.run_items(cmds, ctx))
+
+    def run_items(self, items: Iterable[Item], ctx: PassContext) -> Iterator[Item]:
         comp = _Comp(self, ctx)
-        # Fast path while compensation is off and nothing is pending: a motion in an
-        # uncompensated frame that starts where the previous one (passed through
+        # Fast path while compensation is off and nothing is pending: a motion (or a batch of
+        # moves) in an uncompensated frame that starts where the previous one (passed through
         # unchanged, same frame object) ended is passed through as is; ``comp.last`` is
         # materialised when the fast path ends.
-        through: Motion | None = None
-        for c in cmds:
-            if through is not None:
-                if c.frame is through.frame and isinstance(c, _MOTIONS) and c.start == through.end:
-                    through = c
+        t_frame: Frame | None = None  # frame and end of the last motion passed through
+        t_end: Vec6 = ZERO6
+        for x in items:
+            if isinstance(x, MoveBatch):
+                if x.passes_whole and t_frame is not None and x.frame is t_frame and x.start0 == t_end:
+                    t_end = x.last_end
+                    yield x
+                    continue
+                if (x.passes_whole and t_frame is None and comp.pending is None and comp.last is None
+                        and not comp.was_on and _off(x.frame)):
+                    t_frame, t_end = x.frame, x.last_end
+                    yield x
+                    continue
+                cmds: Iterable[Command] = x.commands()
+            else:
+                cmds = (x,)
+            for c in cmds:
+                if t_frame is not None:
+                    if c.frame is t_frame and isinstance(c, _MOTIONS) and c.start == t_end:
+                        t_end = c.end
+                        yield c
+                        continue
+                    comp.last = add_offsets(t_end, t_frame)
+                    t_frame = None
+                if (comp.pending is None and comp.last is None and not comp.was_on and isinstance(c, _MOTIONS)
+                        and _off(c.frame)):
+                    t_frame, t_end = c.frame, c.end
                     yield c
                     continue
-                comp.last = add_offsets(through.end, through.frame)
-                through = None
-            if (comp.pending is None and comp.last is None and not comp.was_on and isinstance(c, _MOTIONS)
-                    and _off(c.frame)):
-                through = c
-                yield c
-                continue
-            yield from comp.feed(c)
-            if (comp.pending is None and not comp.was_on and isinstance(c, _MOTIONS) and _off(c.frame)
-                    and comp.last is not None and comp.last == add_offsets(c.end, c.frame)):
-                through = c
+                yield from comp.feed(c)
+                if (comp.pending is None and not comp.was_on and isinstance(c, _MOTIONS) and _off(c.frame)
+                        and comp.last is not None and comp.last == add_offsets(c.end, c.frame)):
+                    t_frame, t_end = c.frame, c.end
         yield from comp.finish()
 
 

@@ -33,6 +33,7 @@ from cncc.ir import (
     Rapid,
     SpindleState,
 )
+from cncc.ir.batch import Item
 from cncc.passes import Pass, PassContext, linuxcnc_cycles, register, series8_cycles
 from cncc.passes.cycle_path import CyclePath as _Path
 from cncc.passes.cycle_path import Sequence
@@ -50,6 +51,14 @@ class ExpandCycles(Pass):
 
     def run(self, cmds: Iterable[Command], ctx: PassContext) -> Iterator[Command]:
         for c in cmds:
+            if isinstance(c, Cycle) and c.kind.value not in self.keep:
+                yield from expand(c)
+            else:
+                yield c
+
+    def run_items(self, items: Iterable[Item], ctx: PassContext) -> Iterator[Item]:
+        """Batches of moves (:mod:`cncc.ir.batch`) hold no cycles: they pass through."""
+        for c in items:
             if isinstance(c, Cycle) and c.kind.value not in self.keep:
                 yield from expand(c)
             else:

@@ -14,6 +14,7 @@ from dataclasses import dataclass, replace
 from typing import ClassVar
 
 from cncc.ir import Command, Frame
+from cncc.ir.batch import Item, MoveBatch, expand
 from cncc.passes import Pass, PassContext, register
 
 
@@ -25,11 +26,17 @@ class PolarPass(Pass):
     name: ClassVar[str] = "polar"
 
     def run(self, cmds: Iterable[Command], ctx: PassContext) -> Iterator[Command]:
+        return expand(self.run_items(cmds, ctx))
+
+    def run_items(self, items: Iterable[Item], ctx: PassContext) -> Iterator[Item]:
         cache: dict[int, tuple[Frame, Frame]] = {}
-        for c in cmds:
+        for c in items:
             f = c.frame
             if f.polar is None:
                 yield c
+                continue
+            if isinstance(c, MoveBatch):  # the front end makes batches outside G16 only; should one come
+                yield from self.run(c.commands(), ctx)
                 continue
             entry = cache.get(id(f))
             if entry is None or entry[0] is not f:

@@ -15,6 +15,7 @@ from dataclasses import dataclass, replace
 from typing import ClassVar
 
 from cncc.ir import ZERO6, Arc, Command, Frame, Linear, Rapid, Vec6
+from cncc.ir.batch import Item, MoveBatch, expand
 from cncc.passes import Pass, PassContext, register
 
 
@@ -30,8 +31,11 @@ class ToMachine(Pass):
     name: ClassVar[str] = "to-machine"
 
     def run(self, cmds: Iterable[Command], ctx: PassContext) -> Iterator[Command]:
+        return expand(self.run_items(cmds, ctx))
+
+    def run_items(self, items: Iterable[Item], ctx: PassContext) -> Iterator[Item]:
         cache: dict[int, tuple[Frame, Frame]] = {}
-        for c in cmds:
+        for c in items:
             f = c.frame
             entry = cache.get(id(f))
             if entry is None or entry[0] is not f:
@@ -41,7 +45,12 @@ class ToMachine(Pass):
                 entry = cache[id(f)] = (f, nf)
             nf = entry[1]
             o = f.total_offset_mm
-            if nf is f or not isinstance(c, Rapid | Linear | Arc):
+            if isinstance(c, MoveBatch):  # every row and its F word shifted at once
+                if nf is f:
+                    yield c
+                else:
+                    yield c.with_(frame=nf, start0=_add(c.start0, o), end=c.end + o, center=c.center + o)
+            elif nf is f or not isinstance(c, Rapid | Linear | Arc):
                 yield c if nf is f else replace(c, frame=nf)
             elif isinstance(c, Rapid):
                 yield Rapid(c.span, nf, _add(c.start, o), _add(c.end, o), c.motion, c.origin)

@@ -23,6 +23,7 @@ from dataclasses import dataclass, field
 from typing import TypeVar
 
 from cncc.ir import Command
+from cncc.ir.batch import Item, expand
 from cncc.passes import Pass, PassContext
 from cncc.pipeline.invariants import Checker
 from cncc.source import SourceMap
@@ -183,7 +184,7 @@ class PassManager:
     def __init__(self, instrument: Instrumentation | None = None) -> None:
         self.instrument = instrument if instrument is not None and instrument.active else None
 
-    def source(self, cmds: Iterable[Command], row: str = "front end") -> Iterable[Command]:
+    def source(self, cmds: Iterable[Item], row: str = "front end") -> Iterable[Item]:
         """The front end's stream, timed as a row of its own under ``--time-passes``."""
         return self.timed(cmds, row)
 
@@ -199,14 +200,21 @@ class PassManager:
 
     def run(self, passes: Iterable[Pass], cmds: Iterable[Command], ctx: PassContext, *,
             stage: str = "path", label: str = "") -> Iterator[Command]:
-        """The commands through ``passes`` in order (lazily).  ``stage="plan"`` continues the
+        """:meth:`run_items` over commands, giving commands."""
+        return expand(self.run_items(passes, cmds, ctx, stage=stage, label=label))
+
+    def run_items(self, passes: Iterable[Pass], cmds: Iterable[Item], ctx: PassContext, *,
+                  stage: str = "path", label: str = "") -> Iterator[Item]:
+        """The commands (and batches of moves, :mod:`cncc.ir.batch`) through ``passes`` in order
+        (lazily); each pass gets batches only if it works on them (:meth:`Pass.run_items`), and the
+        instruments see the commands (the batches expanded).  ``stage="plan"`` continues the
         invariants of the last path stage (``to-machine`` has run); ``label`` names the run in
         the --print-after headers (a planned column: "-O1 on generic-mill")."""
-        stream: Iterable[Command] = cmds
+        stream: Iterable[Item] = cmds
         ins = self.instrument
         if ins is None:
             for p in passes:
-                stream = p.run(stream, ctx)
+                stream = p.run_items(stream, ctx)
             return iter(stream)
         ran = set(ins.path_ran) if stage == "plan" else set()
         for p in passes:
@@ -217,20 +225,23 @@ class PassManager:
         return iter(stream)
 
     @staticmethod
-    def _one(p: Pass, stream: Iterable[Command], ctx: PassContext, ins: Instrumentation,
-             ran: frozenset[str], label: str) -> Iterable[Command]:
+    def _one(p: Pass, stream: Iterable[Item], ctx: PassContext, ins: Instrumentation,
+             ran: frozenset[str], label: str) -> Iterable[Item]:
         timing = ins.time_passes
         prev = stream
-        out = ins.clock.timed(_deferred(p, prev, ctx), p.name) if timing else p.run(prev, ctx)
+        out: Iterable[Item] = ins.clock.timed(_deferred(p, prev, ctx), p.name) if timing else p.run_items(prev, ctx)
+        if not ins.verify_each and p.name not in ins.print_after:
+            return out
+        cmds: Iterable[Command] = expand(out)
         if ins.verify_each:
-            checked = Checker(p.name, ctx.sink, ins.sources, ran).check(out)
-            out = ins.clock.timed(checked, VERIFY_ROW) if timing else checked
+            checked = Checker(p.name, ctx.sink, ins.sources, ran).check(cmds)
+            cmds = ins.clock.timed(checked, VERIFY_ROW) if timing else checked
         if p.name in ins.print_after:
-            printed = ins.printed(out, p.name, label)
-            out = ins.clock.timed(printed, PRINT_ROW) if timing else printed
-        return out
+            printed = ins.printed(cmds, p.name, label)
+            cmds = ins.clock.timed(printed, PRINT_ROW) if timing else printed
+        return cmds
 
 
-def _deferred(p: Pass, stream: Iterable[Command], ctx: PassContext) -> Iterator[Command]:
-    """``p.run(stream)`` started at the first pull, so eager work in ``run()`` is timed too."""
-    yield from p.run(stream, ctx)
+def _deferred(p: Pass, stream: Iterable[Item], ctx: PassContext) -> Iterator[Item]:
+    """``p.run_items(stream)`` started at the first pull, so eager work in ``run()`` is timed too."""
+    yield from p.run_items(stream, ctx)

@@ -75,6 +75,7 @@ from cncc.ir import (
     Wait,
     WriteWorkTable,
 )
+from cncc.ir.batch import Item, MoveBatch, expand
 from cncc.ir.frame import Mirror, Rotation, Scaling
 from cncc.source import NO_SPAN, Span
 
@@ -146,6 +147,7 @@ class GcodeEmitter:
         self.g91_block = False  # ... and moves an unknown axis: its words are written as increments in G91
         self.g92_force: set[int] = set()  # axes of a G92 preset in the source: written even if unchanged
         self.probe: tuple[str, int] | None = None  # a G38.x marker: (target code or "", moves of it still to come)
+        self.started = False  # the preamble is written
 
     # ---- numbers --------------------------------------------------------------------------
     @property
@@ -215,23 +217,32 @@ class GcodeEmitter:
         return self.block([name, *words], comment)
 
     # ---- program -------------------------------------------------------------------------------
-    def emit(self, cmds: Iterable[Command]) -> Iterator[str]:
+    def emit(self, cmds: Iterable[Item]) -> Iterator[str]:
         if self.t.percent:
             yield "%\n"
-        started = False
+        self.started = False
         for cmd in cmds:
-            self.span = cmd.span
-            if not started and not isinstance(cmd, Comment):  # the modes, in the first command's units
-                started = True
-                if not self.opt.from_program_start:  # a selection (editor) or IR built by hand: start known
-                    self.held = cmd.frame.held_axes
-                    self.unknown = {k for k in range(6) if cmd.frame.held_axes[k]}
-                yield self._preamble(cmd.frame)
-            yield from self._command(cmd)
-        if not started:
+            if isinstance(cmd, MoveBatch):  # a run of plain moves: written a segment at a time
+                from cncc.backends.gcode.batch import batch_lines
+
+                yield from batch_lines(self, cmd)
+            else:
+                yield from self.one(cmd)
+        if not self.started:
             yield self._preamble(Frame(units=self.units))
         if self.t.percent:
             yield "%\n"
+
+    def one(self, cmd: Command) -> Iterator[str]:
+        """The lines of one command of the program (the preamble before the first)."""
+        self.span = cmd.span
+        if not self.started and not isinstance(cmd, Comment):  # the modes, in the first command's units
+            self.started = True
+            if not self.opt.from_program_start:  # a selection (editor) or IR built by hand: start known
+                self.held = cmd.frame.held_axes
+                self.unknown = {k for k in range(6) if cmd.frame.held_axes[k]}
+            yield self._preamble(cmd.frame)
+        yield from self._command(cmd)
 
     def _preamble(self, f: Frame) -> str:
         if self.forced is None:
@@ -813,12 +824,12 @@ def _tool(f: Frame) -> Vec6:
     return (v[0], v[1], v[2], v[3], v[4], v[5])
 
 
-def emit_gcode(cmds: Iterable[Command], dialect: Dialect, options: EmitOptions | None = None,
+def emit_gcode(cmds: Iterable[Item], dialect: Dialect, options: EmitOptions | None = None,
                sink: DiagnosticSink | None = None) -> Iterator[str]:
-    """Yield program lines (with newlines) for ``cmds`` in ``dialect``."""
+    """Yield program lines (with newlines) for ``cmds`` (commands and batches of moves) in ``dialect``."""
     em = GcodeEmitter(dialect, options, sink)
     if em.opt.keep_subprograms:
         from cncc.backends.gcode.subprograms import keep_subprograms
 
-        return keep_subprograms(em, cmds)
+        return keep_subprograms(em, expand(cmds))
     return em.emit(cmds)

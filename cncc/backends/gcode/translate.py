@@ -24,6 +24,7 @@ from cncc.backends.gcode.cycles import keep_problem
 from cncc.backends.gcode.target import Target
 from cncc.diagnostics import DiagnosticSink, Severity
 from cncc.ir import Command, CompSide, Cycle, CycleKind
+from cncc.ir.batch import Item
 
 Expand = Callable[[Cycle], Iterable[Command]]
 
@@ -46,9 +47,10 @@ def kept_cycle_kinds(target: Target) -> frozenset[str]:
     return frozenset(target.cycles)
 
 
-def prepare(cmds: Iterable[Command], target: Target, expand: Expand, sink: DiagnosticSink,
-            kept: frozenset[object] = frozenset()) -> Iterator[Command]:
-    """Expand the cycles the target cannot keep and note the transforms cncc applies.
+def prepare(cmds: Iterable[Item], target: Target, expand: Expand, sink: DiagnosticSink,
+            kept: frozenset[object] = frozenset()) -> Iterator[Item]:
+    """Expand the cycles the target cannot keep and note the transforms cncc applies (batches of
+    moves, :mod:`cncc.ir.batch`, pass through: they hold no cycles).
 
     ``kept``: the rotation, mirror and scaling records the target runs itself (no N0801-N0803).
     """
