@@ -213,7 +213,11 @@ def _strict(traj: Trajectory, lim: dict[str, FloatArray], rule: CornerRule, mach
 
 
 def _is_cubic(traj: Trajectory) -> bool:
-    """Per-axis cubic rows (this module's exact per-phase extremes apply)."""
+    """Per-axis cubic rows (this module's exact per-phase extremes apply): the row arrays are
+    there and no phase is marked ``curved`` (phases on an arc, whose rows are only a start)."""
+    curved = getattr(traj, "curved", None)
+    if curved is not None and bool(np.asarray(curved).any()):
+        return False
     return all(isinstance(getattr(traj, name, None), np.ndarray) for name in ("v0_mm_s", "a0_mm_s2", "j_mm_s3"))
 
 

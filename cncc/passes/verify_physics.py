@@ -105,17 +105,24 @@ def smeared_jerk_bad(traj: Trajectory, b: Boundaries, jmax_mm_s3: FloatArray, pe
     return bad
 
 
-def dense_extremes(traj: Trajectory, per_phase: int = 16) -> tuple[FloatArray, FloatArray, FloatArray]:
+def dense_extremes(traj: Trajectory, per_phase: int = 16, chunk_phases: int = 8192
+                   ) -> tuple[FloatArray, FloatArray, FloatArray]:
     """``(n, m)`` maxima of ``|v|``, ``|a|``, ``|j|`` over ``per_phase + 1`` samples of each phase
-    (both ends by their one-sided limits)."""
+    (both ends by their one-sided limits), ``chunk_phases`` phases at a time (bounded memory)."""
     t0 = np.asarray(traj.t0_s, float)
     dur = np.asarray(traj.duration_s, float)
     n = t0.size
     frac = np.linspace(0.0, 1.0, per_phase + 1)
-    t = t0[:, None] + dur[:, None] * frac[None, :]
-    t[:, -1] = np.maximum(_left(t0 + dur), t0)  # the end of phase k, not the start of k + 1
-    _, v, a, j = traj.sample(t.reshape(-1))
-    m = v.shape[1]
-    shape = (n, per_phase + 1, m)
-    return (np.abs(v).reshape(shape).max(axis=1), np.abs(a).reshape(shape).max(axis=1),
-            np.abs(j).reshape(shape).max(axis=1))
+    outs: list[list[FloatArray]] = [[], [], []]
+    for lo in range(0, n, chunk_phases):
+        hi = min(n, lo + chunk_phases)
+        t = t0[lo:hi, None] + dur[lo:hi, None] * frac[None, :]
+        t[:, -1] = np.maximum(_left(t0[lo:hi] + dur[lo:hi]), t0[lo:hi])  # the end of phase k, not the start of k + 1
+        _, v, a, j = traj.sample(t.reshape(-1))
+        shape = (hi - lo, per_phase + 1, v.shape[1])
+        for dst, x in zip(outs, (v, a, j), strict=True):
+            dst.append(np.abs(x).reshape(shape).max(axis=1))
+    if n == 0:
+        m = len(traj.axes)
+        return np.zeros((0, m)), np.zeros((0, m)), np.zeros((0, m))
+    return np.vstack(outs[0]), np.vstack(outs[1]), np.vstack(outs[2])

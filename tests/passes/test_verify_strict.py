@@ -202,3 +202,13 @@ def test_dense_extremes_find_the_peak_inside_a_non_cubic_phase() -> None:
     assert amax[0, 0] == pytest.approx(9000.0) and jmax[0, 1] == pytest.approx(270000.0)
     _, v_ends, _, _ = circle.sample(np.array([0.0, math.pi / 30.0]))
     assert np.abs(v_ends[:, 0]).max() < 1e-9  # the ends alone would see nothing
+
+
+def test_dense_extremes_are_the_same_in_chunks() -> None:
+    traj = _two_steps(0.0003)
+    whole = vp.dense_extremes(traj)
+    parts = vp.dense_extremes(traj, chunk_phases=2)
+    for w, p in zip(whole, parts, strict=True):
+        assert w.shape == (traj.phase_count, 6)
+        assert np.array_equal(w, p)
+    assert whole[1][2, 0] == pytest.approx(1.2 * X_JERK * PERIOD)  # the middle phase's acceleration
