@@ -75,6 +75,15 @@ their maximum does.
     + A_pl (r - d) Phi^2)) / A_pl``; ``Phi`` is the swept angle less ``2 asin(d / r)``
     (the visits may sit that far from the ends).  This replaces the feed term (2) of the
     group's pieces when larger.
+(5) Corners.  With the chains of (2) forced through the middle ``M`` of every command, the
+    interval between the visits of ``M_c`` and ``M_{c+1}`` contains the visit of the corner
+    ``P`` (the end of ``c``).  Along ``w``, the unit bisector of ``P - M_c`` and ``P -
+    M_{c+1}``, the projection has an interior maximum (``y' = 0``) when ``w.P - d`` exceeds
+    both ``w.M + d``: the motion from the first visit to it ends at rest after at least
+    ``D1 = w.(P - M_c) - 2 d``, the motion from it to the second visit starts at rest, over
+    ``D2``.  In time ``T`` such a motion covers at most ``int_0^T min(V_w, A_w t) dt``, so
+    the interval takes at least the two braking times (acceleration only: the jerk needs a
+    second rest).  This replaces the piece's feed term when larger.
 
 Limitations (it is a bound, not an estimate): the jerk of a centripetal turn, the
 coupling of the axes at a corner and the accelerations at the extremes are dropped, so
@@ -109,6 +118,7 @@ class _Run:
     tol: list[float] = field(default_factory=list)  # d at each checkpoint
     cmd: list[int] = field(default_factory=list)  # index into the run's command caps
     inner: list[bool] = field(default_factory=list)  # farther than 2 d from its command's ends
+    mids: dict[int, int] = field(default_factory=dict)  # command -> the checkpoint at its middle
     caps: list[float] = field(default_factory=list)  # path speed cap per command
     axis_caps: list[np.ndarray] = field(default_factory=list)  # (3,) per command
     circles: list[tuple[int, int, float, float, int, int]] = field(default_factory=list)
@@ -168,6 +178,23 @@ def _arc_points(cmd: Arc) -> tuple[np.ndarray, float, float, int, int]:
     return pts, min(r0, r1), abs(sweep), f, s
 
 
+def _add_line(cur: _Run, cmd: Linear | Rapid, d: float, ci: int) -> None:
+    a, b = np.array(cmd.start[:3], float), np.array(cmd.end[:3], float)
+    span = float(np.linalg.norm(b - a))
+    if span > 6 * d:  # inner points 2 d (and a bit) from the ends, and the middle
+        for x in (2.5 * d / span, 0.5, 1 - 2.5 * d / span):
+            if x == 0.5:
+                cur.mids[ci] = len(cur.pts)
+            cur.pts.append(a + (b - a) * x)
+            cur.tol.append(d)
+            cur.cmd.append(ci)
+            cur.inner.append(True)
+    cur.pts.append(b)
+    cur.tol.append(d)
+    cur.cmd.append(ci)
+    cur.inner.append(False)
+
+
 def _runs(cmds: Sequence[Command], machine: MachineModel, lim: _Limits) -> list[_Run]:
     runs: list[_Run] = []
     cur = _Run()
@@ -221,6 +248,8 @@ def _runs(cmds: Sequence[Command], machine: MachineModel, lim: _Limits) -> list[
             cur.tol.extend([d] * (len(pts) - 1))
             cur.cmd.extend([ci] * (len(pts) - 1))
             cur.inner.extend(bool(x) for x in (along[1:] > 2 * d) & (along[1:] < along[-1] - 2 * d))
+            if along[-1] > 6 * d:
+                cur.mids[ci] = first + int(np.argmin(np.abs(along - along[-1] / 2)))
             if arc_key == key and cur.circles and cur.circles[-1][1] == first:
                 g = cur.circles[-1]
                 cur.circles[-1] = (g[0], len(cur.pts) - 1, min(g[2], radius), g[3] + sweep, f, s)
@@ -228,18 +257,7 @@ def _runs(cmds: Sequence[Command], machine: MachineModel, lim: _Limits) -> list[
                 cur.circles.append((first, len(cur.pts) - 1, radius, sweep, f, s))
             arc_key = key
         else:
-            a, b = np.array(cmd.start[:3], float), np.array(cmd.end[:3], float)
-            span = float(np.linalg.norm(b - a))
-            if span > 6 * d:  # two inner points, 2 d (and a bit) from the ends
-                for x in (2.5 * d / span, 1 - 2.5 * d / span):
-                    cur.pts.append(a + (b - a) * x)
-                    cur.tol.append(d)
-                    cur.cmd.append(ci)
-                    cur.inner.append(True)
-            cur.pts.append(b)
-            cur.tol.append(d)
-            cur.cmd.append(ci)
-            cur.inner.append(False)
+            _add_line(cur, cmd, d, ci)
             arc_key = None
         stop = cmd.motion.mode is PathMode.EXACT_STOP or machine.corner_rule is CornerRule.EXACT_STOP
         if stop or (isinstance(cmd, Rapid) and machine.rapid_ends_in_stop):
@@ -363,8 +381,10 @@ def _range_max(values: np.ndarray, lo: np.ndarray, hi: np.ndarray) -> np.ndarray
     return out
 
 
-def _length_bounds(run: _Run, pts: np.ndarray, tol: np.ndarray, lim: _Limits) -> tuple[float, float]:
-    """(2) with (4), and (3) of the docstring."""
+def _length_bounds(run: _Run, pts: np.ndarray, tol: np.ndarray, lim: _Limits, corners: bool = False
+                   ) -> tuple[float, float]:
+    """(2) with (4), and (3) of the docstring; with ``corners``, (5): the chains are forced
+    through the middle of every command and each corner's term replaces its piece's."""
     n = len(pts)
     cap_of_cmd = np.array(run.caps)
     cmd = np.array(run.cmd)
@@ -383,8 +403,15 @@ def _length_bounds(run: _Run, pts: np.ndarray, tol: np.ndarray, lim: _Limits) ->
         weight.append(w.tolist())
         gaps.append(g.tolist())
     # chains are forced through the ends of every circle group, (4) replaces their feed term
-    cuts = sorted({0, n - 1, *(c[0] for c in run.circles), *(c[1] for c in run.circles)})
-    circle_of = {(c[0], c[1]): c for c in run.circles}
+    cuts = sorted({0, n - 1, *(c[0] for c in run.circles), *(c[1] for c in run.circles),
+                   *(run.mids.values() if corners else ())})
+    circle_of = {} if corners else {(c[0], c[1]): c for c in run.circles}
+    corner_of = {}
+    if corners:
+        for c, mid in run.mids.items():
+            nxt = run.mids.get(c + 1)
+            if nxt is not None:
+                corner_of[mid, nxt] = int(np.flatnonzero(cmd == c)[-1])  # the end of command c
     cruise, s_total = 0.0, 0.0
     for i0, i1 in itertools.pairwise(cuts):
         best, length = {i0: 0.0}, {i0: 0.0}
@@ -402,6 +429,11 @@ def _length_bounds(run: _Run, pts: np.ndarray, tol: np.ndarray, lim: _Limits) ->
         group = circle_of.get((i0, i1))
         if group is not None and not lim.steps:
             piece = max(piece, _circle_time_s(group, tol, cap_of_cmd, cmd, lim))
+        vertex = corner_of.get((i0, i1))
+        if vertex is not None and not lim.steps:
+            cap_here = float(cap_of_cmd[max(int(cmd[i0]) - 1, 1):min(int(cmd[i1]) + 2, ncmd)].max())
+            piece = max(piece, _corner_time_s(pts[i0], pts[vertex], pts[i1], float(tol[i0:i1 + 1].max()),
+                                              cap_here, lim))
         cruise += piece
         s_total += length[i1]
     a_path = float(np.linalg.norm(lim.a))
@@ -409,6 +441,35 @@ def _length_bounds(run: _Run, pts: np.ndarray, tol: np.ndarray, lim: _Limits) ->
     ramp = v_run * v_run / a_path
     t_acc = 2 * math.sqrt(s_total / a_path) if s_total < ramp else s_total / v_run + v_run / a_path
     return cruise, t_acc
+
+
+def _brake_s(dist: float, v: float, a: float) -> float:
+    """Least time to cover ``dist`` ending at rest from any start with ``|v| <= V``,
+    ``|v'| <= A``: the distance in time ``T`` is at most ``int_0^T min(V, A t) dt``."""
+    if dist <= 0:
+        return 0.0
+    return math.sqrt(2 * dist / a) if dist <= v * v / (2 * a) else dist / v + v / (2 * a)
+
+
+def _corner_time_s(p_a: np.ndarray, p: np.ndarray, p_b: np.ndarray, d: float, cap: float, lim: _Limits) -> float:
+    """(5): the least time between the visits of ``p_a`` and ``p_b`` with the corner ``p``
+    visited between them."""
+    e1, e2 = p - p_a, p - p_b
+    n1, n2 = float(np.linalg.norm(e1)), float(np.linalg.norm(e2))
+    if n1 <= 2 * d or n2 <= 2 * d:
+        return 0.0
+    w = e1 / n1 + e2 / n2
+    nw = float(np.linalg.norm(w))
+    if nw < 1e-12:
+        return 0.0
+    w /= nw
+    d1, d2 = float(w @ e1) - 2 * d, float(w @ e2) - 2 * d
+    if d1 <= 0 or d2 <= 0:
+        return 0.0
+    aw = np.abs(w)
+    v_w = min(float(aw @ np.maximum(lim.v_axis, lim.v_rapid)), cap)
+    a_w = float(aw @ lim.a)
+    return _brake_s(d1, v_w, a_w) + _brake_s(d2, v_w, a_w)
 
 
 def _circle_time_s(group: tuple[int, int, float, float, int, int], tol: np.ndarray, cap_of_cmd: np.ndarray,
@@ -436,7 +497,8 @@ def lower_bounds_s(cmds: Sequence[Command], machine: MachineModel) -> tuple[floa
     for r, run in enumerate(runs):
         pts, tol = np.array(run.pts), np.array(run.tol)
         cruise, t_acc = _length_bounds(run, pts, tol, lim)
-        length_terms[r] = cruise if lim.steps else max(cruise, t_acc)  # velocity steps: only the feed term
+        length_terms[r] = cruise if lim.steps else max(cruise, t_acc, _length_bounds(run, pts, tol, lim, True)[0])
+        # (velocity steps: only the feed term)
         if not lim.steps:
             legs.extend((r, *leg) for leg in _chain_legs(run, pts, tol, lim))
     if not legs:

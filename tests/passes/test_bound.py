@@ -130,3 +130,20 @@ def test_no_plan_is_faster_than_the_bound(kind: str) -> None:
     t2 = plan_commands(cmds, GENERIC, 2).duration_total_s
     assert accel_s <= t1 * (1 + 1e-9), (accel_s, t1)  # -O1 has no jerk limit: the acceleration-only bound
     assert jerk_s <= t2 * (1 + 1e-9), (jerk_s, t2)
+
+
+def test_corner_term_of_a_square_corner() -> None:
+    # two 10 mm lines at 100 mm/s meeting at 90 degrees: between the visits of the two
+    # midpoints (5 mm from the corner) the projection on the bisector w = (1, -1)/sqrt2 has
+    # a maximum; each side brakes over 5 sin(45 deg) - 2 d with A_w = sqrt2 * 1500
+    f = 6000.0
+    corner = [line((0, 10), (10, 10), f), line((10, 10), (10, 0), f)]
+    jerk_s, accel_s = bound.lower_bounds_s(corner, GENERIC)
+    v, a_w = f / 60, math.sqrt(2) * 1500.0
+    dist = 5 * math.sin(math.pi / 4) - 2 * D_TOL
+    brake = math.sqrt(2 * dist / a_w) if dist <= v * v / (2 * a_w) else dist / v + v / (2 * a_w)
+    # rest -> first midpoint and last midpoint -> rest add their feed terms 5 - 2 d each at v
+    expected = 2 * brake + 2 * (5 - 2 * D_TOL) / v
+    assert accel_s >= expected * (1 - 1e-9)
+    assert jerk_s <= plan_commands(corner, GENERIC, 2).duration_total_s
+    assert accel_s <= plan_commands(corner, GENERIC, 1).duration_total_s
