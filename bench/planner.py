@@ -96,6 +96,9 @@ def short_paths() -> dict[str, list[Command]]:
     }
 
 
+STRICT_COUNTS: dict[int, int] = {}  # violations under verify{strict_continuity} per -O level
+
+
 def timed_plan(cmds: list[Command], machine: MachineModel, level: int) -> tuple[float, float, float, int]:
     """(cycle time, wall seconds, CPU seconds, verify violations)."""
     sink = DiagnosticSink()
@@ -104,6 +107,9 @@ def timed_plan(cmds: list[Command], machine: MachineModel, level: int) -> tuple[
     elapsed, cpu = time.perf_counter() - t0, time.process_time() - c0
     report = verify_trajectory(traj, cmds, machine, sink, corner_rule=effective_corner_rule(machine, level),
                                check_dynamics=level > 0, jerk_limited=level >= 2)
+    strict = verify_trajectory(traj, cmds, machine, DiagnosticSink(), corner_rule=effective_corner_rule(machine, level),
+                               check_dynamics=level > 0, jerk_limited=level >= 2, strict_continuity=True)
+    STRICT_COUNTS[level] = STRICT_COUNTS.get(level, 0) + strict.count
     return traj.duration_total_s, elapsed, cpu, report.count
 
 
@@ -157,7 +163,8 @@ def main() -> None:
         print(f"    {name:22s} {r23}   (O2 {t2:6.3f} s)   {t2 / ts:6.3f}       {t2 / t1:6.3f}", flush=True)
     if not args.quick:
         print(f"    worst -O2 / -O3: {worst:.3f}")
-    print(f"(d) verify violations over all plans: {violations}")
+    print(f"(d) verify violations over all plans: {violations}; with strict_continuity, per level: "
+          + ", ".join(f"-O{k} {v}" for k, v in sorted(STRICT_COUNTS.items())))
     print(f"done, {_load()}")
 
 
