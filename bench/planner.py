@@ -9,8 +9,13 @@ Run: ``python bench/planner.py [--quick] [--repeat N]``.  Prints the machine loa
 (e) with ``--scale N,N,...``: whole-process runs (``cncc FILE --emit=timing
     --report-format=json``) on generated programs of every kind (``bench/pathgen.py``)
     at each size: CPU s and peak RSS at -O1 and -O2, their ratio, -O2 segments per CPU
-    second, and the -O2 exit code (goals: -O2 >= 20,000 segments/s at 100k, -O2 CPU
-    <= 3x -O1, RSS < 300 MB, exit 0).  ``--scale-only`` skips (a)-(d).
+    second, CPU microseconds per segment (flat from 1k to 100k: linear), the cycle time
+    -O2/-O1, -O2 against the jerk-aware lower bound of ``bench/bound.py`` (independent, no
+    planner code; goal <= 1.15) and -O1 against the acceleration-only bound, the -O2 exit
+    code and, where -O2 is slower than -O1, why: "jerk forces it" when the jerk-aware bound
+    is above -O1's time (goals: -O2 >= 20,000 segments/s at 100k, -O2 CPU <= 3x -O1,
+    RSS < 300 MB, exit 0).  ``--scale-only`` skips (a)-(d);
+(f) with ``--o3``: -O2/-O3 whole process on the arc and random-walk kinds at 1k.
 """
 
 from __future__ import annotations
@@ -91,6 +96,9 @@ def short_paths() -> dict[str, list[Command]]:
     }
 
 
+STRICT_COUNTS: dict[int, int] = {}  # violations under verify{strict_continuity} per -O level
+
+
 def timed_plan(cmds: list[Command], machine: MachineModel, level: int) -> tuple[float, float, float, int]:
     """(cycle time, wall seconds, CPU seconds, verify violations)."""
     sink = DiagnosticSink()
@@ -99,6 +107,9 @@ def timed_plan(cmds: list[Command], machine: MachineModel, level: int) -> tuple[
     elapsed, cpu = time.perf_counter() - t0, time.process_time() - c0
     report = verify_trajectory(traj, cmds, machine, sink, corner_rule=effective_corner_rule(machine, level),
                                check_dynamics=level > 0, jerk_limited=level >= 2)
+    strict = verify_trajectory(traj, cmds, machine, DiagnosticSink(), corner_rule=effective_corner_rule(machine, level),
+                               check_dynamics=level > 0, jerk_limited=level >= 2, strict_continuity=True)
+    STRICT_COUNTS[level] = STRICT_COUNTS.get(level, 0) + strict.count
     return traj.duration_total_s, elapsed, cpu, report.count
 
 
@@ -115,9 +126,10 @@ def main() -> None:
     ap.add_argument("--scale-only", action="store_true", help="only the whole-process runs")
     ap.add_argument("--kinds", default="", help="comma-separated subset of the path kinds")
     ap.add_argument("--limit", type=float, default=300.0, help="seconds before a whole-process run is killed")
+    ap.add_argument("--o3", action="store_true", help="with --scale: also (f) -O2/-O3 on the 1k arc and walk kinds")
     args = ap.parse_args()
     if args.scale:
-        scale_runs([int(x) for x in args.scale.split(",")], args.kinds, args.limit)
+        scale_runs([int(x) for x in args.scale.split(",")], args.kinds, args.limit, args.o3)
         if args.scale_only:
             return
     machine = load_machine("generic-mill")
@@ -151,22 +163,49 @@ def main() -> None:
         print(f"    {name:22s} {r23}   (O2 {t2:6.3f} s)   {t2 / ts:6.3f}       {t2 / t1:6.3f}", flush=True)
     if not args.quick:
         print(f"    worst -O2 / -O3: {worst:.3f}")
-    print(f"(d) verify violations over all plans: {violations}")
+    print(f"(d) verify violations over all plans: {violations}; with strict_continuity, per level: "
+          + ", ".join(f"-O{k} {v}" for k, v in sorted(STRICT_COUNTS.items())))
     print(f"done, {_load()}")
 
 
-def scale_runs(sizes: list[int], kinds: str, limit_s: float) -> None:
+def _bound(path: Path, machine: str = "generic-mill") -> tuple[float, float, float]:
+    """(jerk-aware bound, acceleration-only bound, CPU s) from bench/bound.py in a child
+    (the bench process must stay small: children inherit its RSS)."""
     import subprocess
+
+    t0 = os.times()
+    out = subprocess.run([sys.executable, str(Path(__file__).parent / "bound.py"), str(path), machine],
+                         capture_output=True, text=True,
+                         env=dict(os.environ, PYTHONPATH=str(Path(__file__).resolve().parents[1]))).stdout.split()
+    t1 = os.times()
+    cpu = (t1.children_user - t0.children_user) + (t1.children_system - t0.children_system)
+    if len(out) != 2:
+        return math.nan, math.nan, cpu
+    return float(out[0]), float(out[1]), cpu
+
+
+def _reason(c1: float, c2: float, jb: float) -> str:
+    """Why -O2's cycle is above -O1's (issue 26): the jerk-aware bound above -O1 means no
+    jerk-limited plan can match -O1 (trapezoids, no jerk limit)."""
+    if not c2 > c1 * 1.0005:
+        return ""
+    return "jerk forces it" if jb > c1 else "planner (bound < -O1)"
+
+
+def scale_runs(sizes: list[int], kinds: str, limit_s: float, o3: bool = False) -> None:
     import tempfile
 
     from pathgen import KINDS
     from scale import timing_run
 
     wanted = [k for k in KINDS if not kinds or k in kinds.split(",")]
-    print(f"(e) whole process, cncc FILE --emit=timing --report-format=json, {_load()}")
-    print("    CPU s and peak RSS per run; cycle: -O2 motion time / -O1's and / an independent lower bound")
-    print(f"    {'kind':12s} {'segments':>9s} {'-O1 CPU s':>10s} {'MB':>5s} {'-O2 CPU s':>10s} {'MB':>5s} "
-          f"{'CPU O2/O1':>9s} {'-O2 seg/s':>10s} {'O2/O1':>6s} {'O2/bound':>8s} rc")
+    print(f"(e) whole process, cncc FILE --emit=timing --report-format=json, generic-mill, {_load()}")
+    print("    CPU s and peak RSS per run, CPU us per segment; cycle: -O2 motion time / -O1's and / the jerk-aware")
+    print("    lower bound of bench/bound.py (no planner code; 'acc' the acceleration-only bound / -O1);")
+    print("    goals: -O2 >= 20,000 seg/s at 100k, CPU O2/O1 <= 3, RSS < 300 MB, O2/bound <= 1.15")
+    print(f"    {'kind':12s} {'segments':>9s} {'-O1 CPU s':>10s} {'MB':>5s} {'us/seg':>6s} {'-O2 CPU s':>10s} "
+          f"{'MB':>5s} {'us/seg':>6s} {'O2/O1':>6s} {'seg/s':>8s} {'cyc O2/O1':>9s} {'O2/bound':>8s} "
+          f"{'O1/acc':>6s} rc  why -O2 > -O1")
     with tempfile.TemporaryDirectory() as tmp:
         for kind in wanted:
             for n in sizes:
@@ -174,23 +213,39 @@ def scale_runs(sizes: list[int], kinds: str, limit_s: float) -> None:
                 path.write_text(KINDS[kind](n))
                 r1, c1 = timing_run(path, 1, limit_s)
                 r2, c2 = timing_run(path, 2, limit_s)
-                bound = math.nan
-                if n <= 20_000:  # in a child: the bench process must stay small (children inherit its RSS)
-                    out = subprocess.run([sys.executable, str(Path(__file__).parent / "bound.py"), str(path)],
-                                         capture_output=True, text=True, env=dict(os.environ, PYTHONPATH=str(
-                                             Path(__file__).resolve().parents[1]))).stdout.strip()
-                    bound = float(out) if out else math.nan
+                jb, ab, _ = _bound(path)
 
                 def cpu(r: object) -> str:
                     assert hasattr(r, "rc") and hasattr(r, "cpu_s")
                     return f">{limit_s:.0f}" if r.rc == -1 else f"{r.cpu_s:.2f}"
 
-                ratio = "" if r1.rc == -1 or r2.rc == -1 else f"{r2.cpu_s / r1.cpu_s:9.2f}"
-                rate = "" if r2.rc == -1 else f"{n / r2.cpu_s:10,.0f}"
+                ratio = "" if r1.rc == -1 or r2.rc == -1 else f"{r2.cpu_s / r1.cpu_s:6.2f}"
+                rate = "" if r2.rc == -1 else f"{n / r2.cpu_s:8,.0f}"
                 codes = sorted(set(re.findall(r"[EW]0\d{3}", r2.stderr)))
-                print(f"    {kind:12s} {n:9,d} {cpu(r1):>10s} {r1.rss_mb:5.0f} {cpu(r2):>10s} {r2.rss_mb:5.0f} "
-                      f"{ratio:>9s} {rate:>10s} {c2 / c1:6.3f} {c2 / bound:8.3f} {r2.rc} {' '.join(codes)}",
-                      flush=True)
+                print(f"    {kind:12s} {n:9,d} {cpu(r1):>10s} {r1.rss_mb:5.0f} {1e6 * r1.cpu_s / n:6.0f} "
+                      f"{cpu(r2):>10s} {r2.rss_mb:5.0f} {1e6 * r2.cpu_s / n:6.0f} {ratio:>6s} {rate:>8s} "
+                      f"{c2 / c1:9.3f} {c2 / jb:8.3f} {c1 / ab:6.3f} {r2.rc:2d}  {_reason(c1, c2, jb)} "
+                      f"{' '.join(codes)}", flush=True)
+        if o3:
+            o3_runs(Path(tmp), limit_s)
+
+
+def o3_runs(tmp: Path, limit_s: float) -> None:
+    """(f) -O2 / -O3 whole process on the arc and random-walk kinds at 1k segments."""
+    from pathgen import KINDS
+    from scale import timing_run
+
+    print(f"(f) -O2 / -O3 whole process at 1,000 segments (goal <= 1.03), {_load()}")
+    for kind in ("arcs", "random walk"):
+        path = tmp / f"o3_{kind.replace(' ', '_')}.nc"
+        path.write_text(KINDS[kind](1000))
+        _, c2 = timing_run(path, 2, limit_s)
+        r3, c3 = timing_run(path, 3, limit_s)
+        jb, _, _ = _bound(path)
+        codes = sorted(set(re.findall(r"[EW]0\d{3}", r3.stderr)))
+        cpu3 = f">{limit_s:.0f}" if r3.rc == -1 else f"{r3.cpu_s:.1f}"
+        print(f"    {kind:12s} -O2 {c2:9.3f} s  -O3 {c3:9.3f} s ({cpu3} CPU s, rc {r3.rc})  -O2/-O3 {c2 / c3:6.3f}  "
+              f"-O3/bound {c3 / jb:6.3f}  {' '.join(codes)}", flush=True)
 
 
 if __name__ == "__main__":

@@ -9,6 +9,13 @@ generation is run ``--repeat`` times; the best wall-clock time is reported with 
 CPU time of that run and the load average, because the machine may be shared.
 
     python bench/pulses.py [--steps 100000000] [--mode exact|interp] [--chunk 262144] [--repeat 3]
+    python bench/pulses.py --whole 100000     # whole process on the raster kind of bench/pathgen.py
+
+``--whole N`` instead runs ``cncc raster.nc --emit=pulses --pulse-format=queue`` as a child
+on the N-segment raster of ``bench/pathgen.py`` (generic-mill with Z soft max 10 mm, since
+the program's clearance moves go to Z5): steps per CPU second of the child (user + system,
+``os.wait4``), its peak RSS, and the steps counted in the written queue (goal >= 1 M
+steps/s whole process, streamed).
 """
 
 from __future__ import annotations
@@ -90,13 +97,57 @@ def numpy_pass(samples: int, chunk: int) -> float:
     return time.perf_counter() - t
 
 
+BENCH_MILL = """base = "generic-mill"
+name = "bench-mill"
+[[axes]]
+name = "Z"
+soft_max_mm = 10.0
+"""
+
+
+def whole_process(n: int, mode: str, limit_s: float = 1800.0) -> None:
+    import sys
+    import tempfile
+    from pathlib import Path
+
+    here = Path(__file__).resolve().parent
+    sys.path.insert(0, str(here))
+    from pathgen import KINDS
+    from scale import run_cncc
+
+    with tempfile.TemporaryDirectory() as tmp:
+        src, mill, out = Path(tmp) / "raster.nc", Path(tmp) / "bench-mill.toml", Path(tmp) / "raster.queue"
+        src.write_text(KINDS["raster"](n))
+        mill.write_text(BENCH_MILL)
+        load = os.getloadavg()
+        r = run_cncc(src, ["-m", str(mill), "--emit=pulses", "--pulse-format=queue", f"--pulse-mode={mode}",
+                           "-o", str(out)], limit_s)
+        steps = 0
+        if r.rc == 0:
+            with out.open() as fh:
+                for row in fh:
+                    if row.startswith("queue_step"):
+                        steps += int(row.split()[3])
+        print(f"whole process, --emit=pulses --pulse-format=queue --pulse-mode={mode}, raster {n:,} segments, "
+              f"load {load[0]:.1f}/{load[1]:.1f} on {os.cpu_count()} cores")
+        if r.rc != 0:
+            print(f"  exit {r.rc}: {r.stderr.strip()[-400:]}")
+            return
+        print(f"  {steps:,} steps in {r.cpu_s:.2f} CPU s: {steps / r.cpu_s / 1e6:.2f} M steps per CPU second "
+              f"(goal >= 1), peak RSS {r.rss_mb:.0f} MB")
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--steps", type=int, default=100_000_000)
     ap.add_argument("--mode", default="exact", choices=["exact", "interp"])
     ap.add_argument("--chunk", type=int, default=DEFAULT_CHUNK_STEPS)
     ap.add_argument("--repeat", type=int, default=3)
+    ap.add_argument("--whole", type=int, default=0, help="whole process on the N-segment raster instead")
     args = ap.parse_args()
+    if args.whole:
+        whole_process(args.whole, args.mode)
+        return
     traj = program(args.steps)
     print(f"program: {traj.phase_count} phases, 3 axes, {traj.duration_total_s:.1f} s of motion, mode {args.mode}")
     load = os.getloadavg()[0]

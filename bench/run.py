@@ -23,6 +23,8 @@ SCRIPTS = [
     ("macros.py", [], ["--rows", "100", "--cols", "100", "--plain-lines", "50000"]),
     ("planner.py", [], ["--quick"]),
     ("pulses.py", ["--steps", "100000000"], ["--steps", "2000000", "--repeat", "1"]),
+    ("planner.py", ["--scale", "1000,10000,100000", "--scale-only", "--o3"], ["--scale", "1000", "--scale-only"]),
+    ("pulses.py", ["--whole", "100000"], ["--whole", "10000"]),
     ("lsp.py", [], ["--lines", "2000", "--edits", "3"]),
     ("pipeline.py", [], ["--lines", "20000"]),
     ("report.py", [], ["--quick"]),

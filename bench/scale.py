@@ -39,7 +39,9 @@ def run_cncc(path: Path, args: list[str], limit_s: float) -> Run:
     timer = [TIME, "-f", "%M", "-o", str(rss_file)] if os.path.exists(TIME) else []
     cmd = [*timer, sys.executable, "-m", "cncc", str(path), *args]
     with tempfile.TemporaryFile() as err:
-        proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=err, env=env)
+        # a session of its own: at the time limit the whole group goes (killing /usr/bin/time
+        # alone left cncc running as an orphan)
+        proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=err, env=env, start_new_session=True)
         start = time.monotonic()
         killed = False
         while True:
@@ -47,7 +49,7 @@ def run_cncc(path: Path, args: list[str], limit_s: float) -> Run:
             if pid:
                 break
             if time.monotonic() - start > limit_s:
-                os.kill(proc.pid, signal.SIGKILL)
+                os.killpg(proc.pid, signal.SIGKILL)
                 killed = True
                 pid, status, usage = os.wait4(proc.pid, 0)
                 break

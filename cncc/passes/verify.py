@@ -23,6 +23,13 @@ commands and the machine model, and checks each constant-jerk phase analytically
   speed step (take-off speed from or to rest); ``blend`` / ``exact-stop``: the
   controller spreads a step over one interpolation period ``T``, so the axis sees
   ``a(t) + sum(steps in (t - T, t]) / T``, which must stay within ``max_accel``.
+* ``strict_continuity`` (:mod:`cncc.passes.verify_physics`, through the Trajectory API
+  only): E0617 becomes velocity continuity at every boundary -- a per-axis velocity
+  step only where the machine declares one (SZGH speed-step corners, take-off from
+  rest) or the plan's corner rule makes one (-O1 junction deviation); no smeared
+  steps -- and E0618 becomes the averaged jerk ``|a(t) - a(t - T)| <= max_jerk * T`` at
+  every instant (steps inside one period add up).  Axes that are not cubics within a
+  phase are checked for E0610-E0612 by dense sampling.  Default :data:`STRICT_CONTINUITY`.
 * E0614 feed: path speed above the programmed (and machine-capped) feed.
 * E0613 path (``check_path``): positions farther than the blend tolerance (+ arc
   tolerance) from the programmed path of the responsible command or its motion
@@ -53,6 +60,7 @@ from cncc.source import NO_SPAN
 REL = 1e-6  # relative slack on every limit (floating point)
 MAX_REPORTS = 5  # diagnostics per kind; the rest are counted
 PLAN_MIN_FEED_MM_MIN = 0.1  # the planners' documented smallest feed (docs/planning.md, W0606)
+STRICT_CONTINUITY = False  # default of the strict rule; flipped once -O2 plans arcs on their path coordinate
 
 
 @dataclass
@@ -114,7 +122,7 @@ def _cmd_table(cmds: Sequence[Command], machine: MachineModel) -> _Cmds:
 def verify_trajectory(traj: Trajectory, cmds: Sequence[Command], machine: MachineModel, sink: DiagnosticSink,
                       *, corner_rule: CornerRule | None = None, check_dynamics: bool = True,
                       jerk_limited: bool = True, check_soft_limits: bool = True,
-                      check_path: bool = True) -> VerifyReport:
+                      check_path: bool = True, strict_continuity: bool | None = None) -> VerifyReport:
     """Check ``traj`` (planned from ``cmds``) against ``machine``; see the module docstring."""
     report = VerifyReport()
     if traj.phase_count == 0:
@@ -122,6 +130,7 @@ def verify_trajectory(traj: Trajectory, cmds: Sequence[Command], machine: Machin
     lim = _limits(machine)
     table = _cmd_table(cmds, machine)
     rule = corner_rule if corner_rule is not None else machine.corner_rule
+    strict = STRICT_CONTINUITY if strict_continuity is None else strict_continuity
     ci = np.clip(traj.cmd_index, 0, max(len(cmds) - 1, 0))
 
     def emit(code: str, bad: Any, what: str) -> None:
@@ -149,8 +158,11 @@ def verify_trajectory(traj: Trajectory, cmds: Sequence[Command], machine: Machin
              "an axis acceleration exceeds its limit")
         emit(dg.VERIFY_JERK, (np.abs(j) > lim["j"][None, :] * (1 + REL) + 1e-9).any(axis=1),
              "an axis jerk exceeds its limit")
-        bad_c = _corners(traj, v_end, a_end, lim, rule, machine)
-        emit(dg.VERIFY_CORNER, bad_c, f"a velocity step exceeds the corner rule '{rule.value}'")
+        if strict:
+            _strict(traj, lim, rule, machine, jerk_limited, emit)
+        else:
+            bad_c = _corners(traj, v_end, a_end, lim, rule, machine)
+            emit(dg.VERIFY_CORNER, bad_c, f"a velocity step exceeds the corner rule '{rule.value}'")
         if jerk_limited:
             emit(dg.VERIFY_ACCEL_STEP, _accel_steps(traj, a_end, lim["j"], machine.interpolation_period_s),
                  "an acceleration step exceeds the jerk limit over one interpolation period")
@@ -168,6 +180,45 @@ def verify_trajectory(traj: Trajectory, cmds: Sequence[Command], machine: Machin
     emit(dg.VERIFY_SOFT_LIMIT, ((lo < lim["lo"] - 1e-6) | (hi > lim["hi"] + 1e-6)).any(axis=1),
          "an axis leaves its soft limits")
     return report
+
+
+def _strict(traj: Trajectory, lim: dict[str, FloatArray], rule: CornerRule, machine: MachineModel,
+            jerk_limited: bool, emit: Any) -> None:
+    """The ``strict_continuity`` checks (API only, see :mod:`cncc.passes.verify_physics`)."""
+    from cncc.passes import verify_physics as vp
+
+    n = traj.phase_count
+    b = vp.boundary_states(traj)
+    declared = lim["step"] if machine.corner_rule is CornerRule.SPEED_STEP or rule is CornerRule.SPEED_STEP \
+        else np.zeros_like(lim["step"])
+    bad = vp.velocity_steps_bad(b, declared, lim["start"], np.maximum(lim["v"], lim["rapid"]))
+    if rule is CornerRule.JUNCTION_DEVIATION:
+        bad &= ~_jd_ok(b.v_before, b.v_after, lim["a"], machine.junction_deviation_mm)
+    bad[n - 1] |= bad[n]
+    emit(dg.VERIFY_CORNER, bad[:n], f"a velocity step that neither the machine nor the corner rule "
+                                    f"'{rule.value}' allows (strict continuity)")
+    if jerk_limited:
+        jerky = vp.smeared_jerk_bad(traj, b, lim["j"], machine.interpolation_period_s)
+        jerky[n - 1] |= jerky[n]
+        emit(dg.VERIFY_ACCEL_STEP, jerky[:n], "the acceleration changes by more than the jerk limit "
+                                              "within one interpolation period")
+    if not _is_cubic(traj):
+        vmax_abs, amax_abs, jmax_abs = vp.dense_extremes(traj)
+        emit(dg.VERIFY_VELOCITY, (vmax_abs > np.maximum(lim["v"], lim["rapid"]) * (1 + REL) + 1e-9).any(axis=1),
+             "an axis velocity exceeds its limit (sampled)")
+        emit(dg.VERIFY_ACCEL, (amax_abs > lim["a"] * (1 + REL) + 1e-9).any(axis=1),
+             "an axis acceleration exceeds its limit (sampled)")
+        emit(dg.VERIFY_JERK, (jmax_abs > lim["j"] * (1 + REL) + 1e-9).any(axis=1),
+             "an axis jerk exceeds its limit (sampled)")
+
+
+def _is_cubic(traj: Trajectory) -> bool:
+    """Per-axis cubic rows (this module's exact per-phase extremes apply): the row arrays are
+    there and no phase is marked ``curved`` (phases on an arc, whose rows are only a start)."""
+    curved = getattr(traj, "curved", None)
+    if curved is not None and bool(np.asarray(curved).any()):
+        return False
+    return all(isinstance(getattr(traj, name, None), np.ndarray) for name in ("v0_mm_s", "a0_mm_s2", "j_mm_s3"))
 
 
 def _v_at(v0: FloatArray, a0: FloatArray, j: FloatArray, tau: FloatArray) -> FloatArray:
@@ -312,6 +363,7 @@ class Verify(Pass):
     check_dynamics: bool = True  # accelerations, jerks and corners (-O1 and above)
     jerk_limited: bool = True  # acceleration steps too (-O2 and above)
     soft_limits: bool = False  # the machine's soft limits (only meaningful with the work offsets known)
+    strict_continuity: bool | None = None  # None: STRICT_CONTINUITY (velocity continuity, averaged jerk)
 
     def run(self, cmds: Iterable[Command], ctx: PassContext) -> Iterator[Command]:
         items = list(cmds)
@@ -323,5 +375,6 @@ class Verify(Pass):
                                                   corner_rule=effective_corner_rule(ctx.machine, ctx.plan_level),
                                                   check_dynamics=self.check_dynamics,
                                                   jerk_limited=self.jerk_limited,
-                                                  check_soft_limits=self.soft_limits)
+                                                  check_soft_limits=self.soft_limits,
+                                                  strict_continuity=self.strict_continuity)
         return iter(items)

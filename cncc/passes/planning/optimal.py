@@ -22,6 +22,14 @@ constraint model of -O2 without -O2's filter.  After all windows the exact extre
 every phase (the velocity inside a phase is checked only at three points by the NLP)
 are measured and the whole part is slowed down by the tiny factor that removes any
 excess.  A window IPOPT cannot solve keeps its -O2 phases (W0605).
+
+Bounded work per window: IPOPT stops after :data:`MAX_ITER` iterations or
+:data:`MAX_CPU_S` CPU seconds, whichever first; such a window counts as failed and keeps
+its start phases (W0605), so the cost is linear in the number of windows.
+
+With ``vertex_acap`` (:func:`accel_step_caps`: ``min_i j_i T / |du_i|`` at each vertex),
+the path acceleration at a knot on a vertex is bounded too: the per-axis acceleration
+steps by ``a |du_i|`` there, and verify's E0618 wants that within ``j_i T``.
 """
 
 from __future__ import annotations
@@ -48,7 +56,20 @@ MAX_CPU_S = 20.0
 _SOLVED = ("Solve_Succeeded", "Solved_To_Acceptable_Level")
 
 
-def optimise(seg: Segments, o2: Phases, sink: DiagnosticSink) -> Phases:
+def accel_step_caps(seg: Segments, jmax_mm_s3: FloatArray, period_s: float) -> FloatArray:
+    """``(k + 1,)`` bounds on ``|a|`` at the vertices (inf at the ends and where the direction
+    does not change): the per-axis step ``a |du_i|`` stays within ``j_i T``."""
+    out = np.full(seg.count + 1, np.inf)
+    du = np.abs(seg.u[1:] - seg.u[:-1])
+    if du.size:
+        with np.errstate(divide="ignore"):
+            per_axis = np.where(du > 1e-12, jmax_mm_s3[None, :du.shape[1]] * period_s / np.maximum(du, 1e-300), np.inf)
+        out[1:-1] = per_axis.min(axis=1)
+    return out
+
+
+def optimise(seg: Segments, o2: Phases, sink: DiagnosticSink, vertex_acap: FloatArray | None = None) -> Phases:
+    """-O3's profile of one part, never slower than ``o2`` (see the module docstring)."""
     if seg.count < 2 or o2.t0.size < 3:
         return o2
     ph = split_at(o2, seg.s0[1:-1])
@@ -65,7 +86,7 @@ def optimise(seg: Segments, o2: Phases, sink: DiagnosticSink) -> Phases:
     while lo < n:
         hi = min(n, lo + WINDOW)
         sol = _solve_window(seg, k[lo:hi], vertex[lo:hi + 1], [x[lo:hi + 1] for x in knots],
-                            [x[lo] for x in state], h[lo:hi], j[lo:hi])
+                            [x[lo] for x in state], h[lo:hi], j[lo:hi], vertex_acap)
         if not isinstance(sol, tuple):
             # keep the previous window's solution to its end (where it meets -O2's state),
             # then -O2's own phases up to this window's end
@@ -133,13 +154,15 @@ def _solver(n: int) -> Any:
 
 
 def _solve_window(seg: Segments, k: np.ndarray, vertex: np.ndarray, o2: list[FloatArray], start: list[float],
-                  h0: FloatArray, j0: FloatArray) -> Solution | str:
+                  h0: FloatArray, j0: FloatArray, vertex_acap: FloatArray | None = None) -> Solution | str:
     """The window's solution, or ``"failed"`` / ``"no gain"``."""
     n = k.size
     vc, ac, jc = seg.vcap[k], seg.acap[k], seg.jcap[k]
     v_knot = np.minimum(np.append(vc, vc[-1]), np.insert(vc, 0, vc[0]))
     a_knot = np.minimum(np.append(ac, ac[-1]), np.insert(ac, 0, ac[0]))
     on_v = vertex >= 0
+    if vertex_acap is not None:
+        a_knot = np.where(on_v, np.minimum(a_knot, vertex_acap[np.maximum(vertex, 0)]), a_knot)
     v_knot = np.where(on_v, np.minimum(v_knot, seg.vvert[np.maximum(vertex, 0)]), v_knot)
     s_lo, s_hi = np.full(n + 1, -np.inf), np.full(n + 1, np.inf)
     s_lo[on_v] = s_hi[on_v] = seg.s0[vertex[on_v]]
