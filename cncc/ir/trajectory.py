@@ -1,16 +1,27 @@
-"""Trajectory: the planner's output, one row per phase of constant jerk.
+"""Trajectory: the planner's output, phases of constant jerk on exact path geometry.
 
-Every phase ``k`` covers ``[t0_s[k], t0_s[k] + duration_s[k])`` and within it each
-axis ``i`` moves as a cubic polynomial of the local time ``tau``::
+Every phase ``k`` covers ``[t0_s[k], t0_s[k] + duration_s[k])``.  Two kinds of phase:
 
-    p_i(tau) = p0_mm[k, i] + v0[k, i] tau + a0[k, i] tau^2 / 2 + j[k, i] tau^3 / 6
+* **path phases** (``path.seg[k] >= 0``): the machine moves along segment ``g =
+  path.seg[k]`` of :class:`Geometry` (a line, an arc, a helix or a blend arc, exactly),
+  and its path coordinate is a cubic of the local time ``tau``::
 
-Phases are contiguous in time and in position.  Arcs are represented by chords
-that the planner chose within its tolerance, and independent-axis motions by
-splitting time at every axis' phase boundary, so the representation is exact for
-everything downstream: pulses and timing read only this.
+      s(tau) = s0 + v tau + a tau^2 / 2 + j tau^3 / 6        (path.s0_mm ... path.j_mm_s3)
 
-Array shapes (``n`` phases, ``m`` axes):
+  so positions, per-axis velocities, accelerations and jerks (with the centripetal
+  terms on arcs) and step times follow exactly from the geometry and ``s(t)``;
+* **axis rows** (``path`` is None, or ``path.seg[k] == -1``): each axis ``i`` moves as
+  its own cubic (independent-axis dog-leg rapids, the -O0 estimate)::
+
+      p_i(tau) = p0_mm[k, i] + v0[k, i] tau + a0[k, i] tau^2 / 2 + j[k, i] tau^3 / 6
+
+For every phase ``p0_mm``, ``v0_mm_s``, ``a0_mm_s2``, ``j_mm_s3`` hold the exact state
+at the phase start.  On straight phases (lines, and the axis rows) the cubic above is
+then the motion itself; on **curved** phases (``curved[k]``) it is only the Taylor
+start of it: read curved phases through :meth:`Trajectory.sample`,
+:meth:`Trajectory.end_states` and :class:`Geometry`.
+
+Array shapes (``n`` phases, ``m`` axes, ``g`` geometry segments):
 
 * ``t0_s``, ``duration_s``: ``(n,)`` float64, seconds
 * ``p0_mm``, ``v0_mm_s``, ``a0_mm_s2``, ``j_mm_s3``: ``(n, m)`` float64
@@ -34,6 +45,7 @@ from cncc.ir.frame import AXES
 
 FloatArray = npt.NDArray[np.float64]
 IntArray = npt.NDArray[np.int64]
+State = tuple[FloatArray, FloatArray, FloatArray, FloatArray]
 
 
 class Limit(enum.IntEnum):
@@ -51,6 +63,110 @@ class Limit(enum.IntEnum):
 
 
 @dataclass(frozen=True, slots=True)
+class Geometry:
+    """Exact path segments (``g`` of them, ``m`` axes), each parameterised by its arc length ``s``::
+
+        p(s) = c + rho(s) (cos th(s) e1 + sin th(s) e2) + w s,   rho = r0 + dr s,   th = theta0 + kappa s
+
+    for ``0 <= s <= length``.  A line is ``c`` = its start, ``w`` = its unit direction,
+    ``r0 = dr = kappa = 0``; an arc or helix has centre ``c`` (at the start's axial
+    position), orthonormal plane basis ``e1, e2``, radius ``r0`` (``dr``: the radius
+    change per mm of an arc whose end radius differs a little), start angle ``theta0``,
+    ``kappa = sweep / length`` (rad/mm, signed) and axial rate ``w`` (mm per mm of path).
+    ``|p'(s)| = 1`` exactly for lines, circles and helices (``dr = 0``).
+    """
+
+    c: FloatArray  # (g, m)
+    e1: FloatArray  # (g, m)
+    e2: FloatArray  # (g, m)
+    w: FloatArray  # (g, m)
+    r0: FloatArray  # (g,)
+    dr: FloatArray  # (g,)
+    theta0: FloatArray  # (g,)
+    kappa: FloatArray  # (g,)
+    length: FloatArray  # (g,)
+
+    @property
+    def count(self) -> int:
+        return int(self.r0.shape[0])
+
+    @property
+    def curved(self) -> npt.NDArray[np.bool_]:
+        out: npt.NDArray[np.bool_] = (self.kappa != 0) & (self.r0 + np.abs(self.dr) > 0)
+        return out
+
+    def derivatives(self, g: IntArray, s: FloatArray) -> State:
+        """``p(s), p'(s), p''(s), p'''(s)`` of segments ``g`` at ``s`` (shape ``(q,)`` each) -> ``(q, m)``."""
+        th = self.theta0[g] + self.kappa[g] * s
+        cos, sin = np.cos(th)[:, None], np.sin(th)[:, None]
+        e1, e2 = self.e1[g], self.e2[g]
+        nrm = cos * e1 + sin * e2
+        tan = cos * e2 - sin * e1
+        k = self.kappa[g][:, None]
+        dr = self.dr[g][:, None]
+        rho = self.r0[g][:, None] + dr * s[:, None]
+        w = self.w[g]
+        p = self.c[g] + rho * nrm + w * s[:, None]
+        d1 = dr * nrm + rho * k * tan + w
+        d2 = 2 * dr * k * tan - rho * k * k * nrm
+        d3 = -3 * dr * k * k * nrm - rho * k**3 * tan
+        return p, d1, d2, d3
+
+    def take(self, g: IntArray) -> Geometry:
+        return Geometry(self.c[g], self.e1[g], self.e2[g], self.w[g], self.r0[g], self.dr[g], self.theta0[g],
+                        self.kappa[g], self.length[g])
+
+    def axes_subset(self, cols: list[int]) -> Geometry:
+        return Geometry(self.c[:, cols], self.e1[:, cols], self.e2[:, cols], self.w[:, cols], self.r0, self.dr,
+                        self.theta0, self.kappa, self.length)
+
+    @staticmethod
+    def lines(p0: FloatArray, u: FloatArray, length: FloatArray) -> Geometry:
+        g, m = p0.shape
+        z = np.zeros(g)
+        return Geometry(p0, np.zeros((g, m)), np.zeros((g, m)), u, z, z.copy(), z.copy(), z.copy(), length)
+
+    @staticmethod
+    def concat(parts: list[Geometry], m: int) -> Geometry:
+        if not parts:
+            z, zm = np.zeros(0), np.zeros((0, m))
+            return Geometry(zm, zm.copy(), zm.copy(), zm.copy(), z, z.copy(), z.copy(), z.copy(), z.copy())
+        return Geometry(*(np.concatenate([getattr(p, f) for p in parts]) for f in Geometry.__slots__))
+
+
+@dataclass(frozen=True, slots=True)
+class PathLaw:
+    """The path coordinate of every phase: its segment (``-1``: an axis row) and ``s(tau)``."""
+
+    seg: IntArray  # (n,)
+    s0_mm: FloatArray  # (n,) from the segment's start
+    v_mm_s: FloatArray  # (n,) path speed at the phase start
+    a_mm_s2: FloatArray  # (n,)
+    j_mm_s3: FloatArray  # (n,)
+    geometry: Geometry
+
+    def s_at(self, k: IntArray, tau: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
+        v, a, j = self.v_mm_s[k], self.a_mm_s2[k], self.j_mm_s3[k]
+        s = self.s0_mm[k] + tau * (v + tau * (a / 2 + tau * j / 6))
+        return s, v + tau * (a + tau * j / 2), a + j * tau, j
+
+    def states(self, k: IntArray, tau: FloatArray) -> State:
+        """Exact per-axis position, velocity, acceleration, jerk of path phases ``k`` at local ``tau``."""
+        s, sd, sdd, sddd = self.s_at(k, tau)
+        p, d1, d2, d3 = self.geometry.derivatives(np.maximum(self.seg[k], 0), s)
+        sd, sdd, sddd = sd[:, None], sdd[:, None], sddd[:, None]
+        v = d1 * sd
+        a = d2 * sd * sd + d1 * sdd
+        j = d3 * sd**3 + 3 * d2 * sd * sdd + d1 * sddd
+        return p, v, a, j
+
+
+def _cubic(p0: FloatArray, v0: FloatArray, a0: FloatArray, j: FloatArray, tau: FloatArray) -> State:
+    p = p0 + tau * (v0 + tau * (a0 / 2 + tau * j / 6))
+    return p, v0 + tau * (a0 + tau * j / 2), a0 + j * tau, j
+
+
+@dataclass(frozen=True, slots=True)
 class Trajectory:
     t0_s: FloatArray
     duration_s: FloatArray
@@ -61,6 +177,7 @@ class Trajectory:
     cmd_index: IntArray
     limit: npt.NDArray[np.int8]
     axes: tuple[str, ...] = AXES
+    path: PathLaw | None = None
 
     def __post_init__(self) -> None:
         n = self.t0_s.shape[0]
@@ -71,6 +188,8 @@ class Trajectory:
         for name in ("p0_mm", "v0_mm_s", "a0_mm_s2", "j_mm_s3"):
             if getattr(self, name).shape != (n, m):
                 raise ValueError(f"Trajectory.{name} must have shape ({n}, {m})")
+        if self.path is not None and self.path.seg.shape != (n,):
+            raise ValueError(f"Trajectory.path.seg must have shape ({n},)")
 
     @property
     def phase_count(self) -> int:
@@ -82,22 +201,45 @@ class Trajectory:
             return 0.0
         return float(self.t0_s[-1] + self.duration_s[-1])
 
+    @property
+    def curved(self) -> npt.NDArray[np.bool_]:
+        """``(n,)`` bool: phases on an arc, helix or blend arc (their per-axis cubics are only
+        the Taylor start of the motion; see the module docstring)."""
+        if self.path is None:
+            return np.zeros(self.phase_count, bool)
+        seg = self.path.seg
+        out: npt.NDArray[np.bool_] = (seg >= 0) & self.path.geometry.curved[np.maximum(seg, 0)]
+        return out
+
+    def states(self, k: IntArray, tau: FloatArray) -> State:
+        """Exact position, velocity, acceleration, jerk of phases ``k`` at local times ``tau`` -> ``(q, m)``."""
+        k = np.asarray(k, np.int64)
+        tau = np.asarray(tau, np.float64)
+        out = _cubic(self.p0_mm[k], self.v0_mm_s[k], self.a0_mm_s2[k], self.j_mm_s3[k], tau[:, None])
+        if self.path is None:
+            return out
+        bent = self.curved[k]
+        if not bent.any():
+            return out
+        exact = self.path.states(k[bent], tau[bent])
+        res = tuple(np.array(x, copy=True) for x in out)
+        for dst, src in zip(res, exact, strict=True):
+            dst[bent] = src
+        return res[0], res[1], res[2], res[3]
+
     def end_state(self, k: int) -> tuple[FloatArray, FloatArray, FloatArray]:
         """Position, velocity, acceleration at the end of phase ``k``."""
-        t = self.duration_s[k]
-        v0, a0, j = self.v0_mm_s[k], self.a0_mm_s2[k], self.j_mm_s3[k]
-        p = self.p0_mm[k] + v0 * t + a0 * t * t / 2 + j * t**3 / 6
-        return p, v0 + a0 * t + j * t * t / 2, a0 + j * t
+        p, v, a, _ = self.states(np.array([k]), self.duration_s[k:k + 1])
+        return p[0], v[0], a[0]
 
-    def sample(self, t_s: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
+    def end_states(self) -> State:
+        """Exact position, velocity, acceleration, jerk at the end of every phase, ``(n, m)`` each."""
+        return self.states(np.arange(self.phase_count), self.duration_s)
+
+    def sample(self, t_s: FloatArray) -> State:
         """Position, velocity, acceleration, jerk at times ``t_s`` (shape ``(q,)``) -> ``(q, m)``."""
-        k = np.clip(np.searchsorted(self.t0_s, t_s, side="right") - 1, 0, max(self.phase_count - 1, 0))
-        tau = (t_s - self.t0_s[k])[:, None]
-        v0, a0, j = self.v0_mm_s[k], self.a0_mm_s2[k], self.j_mm_s3[k]
-        p = self.p0_mm[k] + v0 * tau + a0 * tau**2 / 2 + j * tau**3 / 6
-        v = v0 + a0 * tau + j * tau**2 / 2
-        a = a0 + j * tau
-        return p, v, a, j
+        k = self.phase_at(t_s)
+        return self.states(k, np.asarray(t_s, np.float64) - self.t0_s[k])
 
     def phase_at(self, t_s: FloatArray) -> IntArray:
         """Index of the phase that covers each time of ``t_s`` (clipped to the first/last phase)."""
@@ -111,6 +253,33 @@ class Trajectory:
             return np.zeros(np.shape(t_s), np.int64), np.zeros(np.shape(t_s), np.int8)
         k = self.phase_at(t_s)
         return self.cmd_index[k], self.limit[k]
+
+    def select_axes(self, cols: list[int]) -> Trajectory:
+        """The same motion restricted to the axes ``cols`` (in that order)."""
+        path = self.path
+        if path is not None:
+            path = PathLaw(path.seg, path.s0_mm, path.v_mm_s, path.a_mm_s2, path.j_mm_s3,
+                           path.geometry.axes_subset(cols))
+        return Trajectory(self.t0_s, self.duration_s, self.p0_mm[:, cols], self.v0_mm_s[:, cols],
+                          self.a0_mm_s2[:, cols], self.j_mm_s3[:, cols], self.cmd_index, self.limit,
+                          tuple(self.axes[i] for i in cols), path)
+
+    @staticmethod
+    def on_path(t0_s: FloatArray, duration_s: FloatArray, cmd_index: IntArray, limit: npt.NDArray[np.int8],
+                law: PathLaw, rows: State | None = None, axes: tuple[str, ...] = AXES) -> Trajectory:
+        """A trajectory of path phases (and axis rows where ``law.seg == -1``, whose cubics
+        ``rows`` gives); the per-axis start states are computed from the geometry."""
+        n, m = t0_s.shape[0], len(axes)
+        p0, v0, a0, j = (np.zeros((n, m)) for _ in range(4))
+        on = law.seg >= 0
+        if on.any():
+            k = np.flatnonzero(on)
+            for dst, src in zip((p0, v0, a0, j), law.states(k, np.zeros(k.size)), strict=True):
+                dst[k] = src
+        if rows is not None and (~on).any():
+            for dst, src in zip((p0, v0, a0, j), rows, strict=True):
+                dst[~on] = src[~on]
+        return Trajectory(t0_s, duration_s, p0, v0, a0, j, cmd_index, limit, axes, law)
 
     @staticmethod
     def empty(axes: tuple[str, ...] = AXES) -> Trajectory:

@@ -185,9 +185,7 @@ def _interp(traj: Trajectory, specs: tuple[AxisPulseSpec, ...], cols: tuple[int,
     per_period = float((r * vmax).sum() * period_s) + 1.0
     k_win = int(min(max(budget / per_period, 1.0), 1 << 20))
     total = period_count(traj, period_s)
-    sub = Trajectory(traj.t0_s, traj.duration_s, traj.p0_mm[:, cols], traj.v0_mm_s[:, cols],
-                     traj.a0_mm_s2[:, cols], traj.j_mm_s3[:, cols], traj.cmd_index, traj.limit,
-                     tuple(traj.axes[i] for i in cols))
+    sub = traj.select_axes(list(cols))
     for k0 in range(0, max(total, 1), k_win):
         k1 = min(k0 + k_win, total)
         raws = interp_window(sub, specs, k0, k1, period_s)
