@@ -288,3 +288,115 @@ class Trajectory:
         zm = np.zeros((0, m))
         return Trajectory(z, z.copy(), zm, zm.copy(), zm.copy(), zm.copy(),
                           np.zeros(0, dtype=np.int64), np.zeros(0, dtype=np.int8), axes)
+
+
+def _abs_sin_max(lo: FloatArray, hi: FloatArray) -> FloatArray:
+    """Largest ``|sin x|`` over ``[lo, hi]`` (elementwise, ``lo <= hi``)."""
+    edge = np.maximum(np.abs(np.sin(lo)), np.abs(np.sin(hi)))
+    peak = np.pi / 2 + np.ceil((lo - np.pi / 2) / np.pi) * np.pi  # first pi/2 + k pi at or after lo
+    out: FloatArray = np.where((peak <= hi) | (hi - lo >= np.pi), 1.0, edge)
+    return out
+
+
+def _abs_quad_max(c0: FloatArray, c1: FloatArray, c2: FloatArray, t: FloatArray) -> FloatArray:
+    """Largest ``|c0 + c1 x + c2 x^2|`` over ``[0, t]``."""
+    end = np.abs(c0 + t * (c1 + t * c2))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        xs = np.where(c2 != 0, -c1 / (2 * c2), -1.0)
+    inside = (xs > 0) & (xs < t)
+    mid = np.where(inside, np.abs(c0 + xs * (c1 + xs * c2)), 0.0)
+    out: FloatArray = np.maximum(np.maximum(np.abs(c0), end), mid)
+    return out
+
+
+def axis_bounds(traj: Trajectory) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """Upper bounds of ``|v_i|``, ``|a_i|``, ``|j_i|`` over each phase, ``(n, m)`` each.
+
+    Straight phases: the exact extremes of their cubics.  Curved phases: the triangle
+    inequality on ``v = p' s'``, ``a = p'' s'^2 + p' s''``, ``j = p''' s'^3 + 3 p'' s' s''
+    + p' s'''`` with each axis' largest ``|p'|``, ``|p''|``, ``|p'''|`` over the phase's
+    own sweep and the largest ``|s'|``, ``|s''|``, ``|s'''|`` of its law (rigorous, and
+    tight on circles at constant speed)."""
+    d = traj.duration_s[:, None]
+    v0, a0, j = traj.v0_mm_s, traj.a0_mm_s2, traj.j_mm_s3
+    vb = _abs_quad_max(v0, a0, j / 2, d)
+    ab = np.maximum(np.abs(a0), np.abs(a0 + j * d))
+    jb = np.abs(j)
+    bent = np.flatnonzero(traj.curved)
+    if bent.size == 0 or traj.path is None:
+        return vb, ab, jb
+    law, geo = traj.path, traj.path.geometry
+    g = law.seg[bent]
+    t = traj.duration_s[bent]
+    s_end, _, _, _ = law.s_at(bent, t)
+    th_a = geo.theta0[g] + geo.kappa[g] * law.s0_mm[bent]
+    th_b = geo.theta0[g] + geo.kappa[g] * s_end
+    lo, hi = np.minimum(th_a, th_b), np.maximum(th_a, th_b)
+    sin_b = _abs_sin_max(lo, hi)[:, None]
+    cos_b = _abs_sin_max(lo + np.pi / 2, hi + np.pi / 2)[:, None]
+    e1, e2 = np.abs(geo.e1[g]), np.abs(geo.e2[g])
+    t_b = sin_b * e1 + cos_b * e2  # |-sin e1 + cos e2|, the plane's axes being unit vectors
+    n_b = np.minimum(cos_b * e1 + sin_b * e2, 1.0)
+    k = np.abs(geo.kappa[g])[:, None]
+    dr = np.abs(geo.dr[g])[:, None]
+    rho = np.maximum(geo.r0[g], geo.r0[g] + geo.dr[g] * geo.length[g])[:, None]
+    p1 = dr * n_b + rho * k * t_b + np.abs(geo.w[g])
+    p2 = 2 * dr * k * t_b + rho * k * k * n_b
+    p3 = 3 * dr * k * k * n_b + rho * k**3 * t_b
+    sv, sa, sj = law.v_mm_s[bent], law.a_mm_s2[bent], law.j_mm_s3[bent]
+    sd = _abs_quad_max(sv, sa, sj / 2, t)[:, None]
+    sdd = np.maximum(np.abs(sa), np.abs(sa + sj * t))[:, None]
+    sddd = np.abs(sj)[:, None]
+    vb[bent] = p1 * sd
+    ab[bent] = p2 * sd * sd + p1 * sdd
+    jb[bent] = p3 * sd**3 + 3 * p2 * sd * sdd + p1 * sddd
+    return vb, ab, jb
+
+
+def _cubic_extent(p0: FloatArray, p_end: FloatArray, v0: FloatArray, a0: FloatArray, j: FloatArray,
+                  dur: FloatArray) -> tuple[FloatArray, FloatArray]:
+    lo, hi = np.minimum(p0, p_end), np.maximum(p0, p_end)
+    disc = a0 * a0 - 2 * j * v0
+    for sign in (-1.0, 1.0):
+        with np.errstate(divide="ignore", invalid="ignore"):
+            root = np.where(j != 0, (-a0 + sign * np.sqrt(np.maximum(disc, 0))) / j,
+                            np.where(a0 != 0, -v0 / a0, -1.0))
+        ok = (root > 0) & (root < dur[:, None]) & (disc >= 0)
+        p = p0 + v0 * root + a0 * root**2 / 2 + j * root**3 / 6
+        lo = np.where(ok, np.minimum(lo, p), lo)
+        hi = np.where(ok, np.maximum(hi, p), hi)
+    return lo, hi
+
+
+def position_bounds(traj: Trajectory) -> tuple[FloatArray, FloatArray]:
+    """Smallest and largest position of every axis over each phase, ``(n, m)`` each: the
+    cubic's extremes on straight phases; on arcs the end points and the points of the
+    sweep where a plane axis turns (angles ``k pi / 2``)."""
+    p_end, _, _, _ = traj.end_states()
+    d = traj.duration_s[:, None]
+    lo, hi = _cubic_extent(traj.p0_mm, p_end, traj.v0_mm_s, traj.a0_mm_s2, traj.j_mm_s3, d[:, 0])
+    bent = np.flatnonzero(traj.curved)
+    if bent.size == 0 or traj.path is None:
+        return lo, hi
+    law, geo = traj.path, traj.path.geometry
+    lo[bent] = np.minimum(traj.p0_mm[bent], p_end[bent])
+    hi[bent] = np.maximum(traj.p0_mm[bent], p_end[bent])
+    g = law.seg[bent]
+    s_a = law.s0_mm[bent]
+    s_b, _, _, _ = law.s_at(bent, traj.duration_s[bent])
+    th_a = geo.theta0[g] + geo.kappa[g] * s_a
+    th_b = geo.theta0[g] + geo.kappa[g] * s_b
+    th_lo, th_hi = np.minimum(th_a, th_b), np.maximum(th_a, th_b)
+    first = np.ceil(th_lo / (np.pi / 2)) * (np.pi / 2)
+    plane = (geo.e1[g] != 0) | (geo.e2[g] != 0)
+    for q in range(4):
+        th = first + q * np.pi / 2
+        inside = th <= th_hi
+        if not inside.any():
+            continue
+        s = np.clip((th - geo.theta0[g]) / np.where(geo.kappa[g] != 0, geo.kappa[g], 1.0), 0, geo.length[g])
+        p, _, _, _ = geo.derivatives(g, s)
+        use = inside[:, None] & plane
+        lo[bent] = np.where(use, np.minimum(lo[bent], p), lo[bent])
+        hi[bent] = np.where(use, np.maximum(hi[bent], p), hi[bent])
+    return lo, hi

@@ -98,7 +98,7 @@ def candidates(run: PathRun, limits: AxisLimits, machine: MachineModel) -> np.nd
     if k < 2:
         return cand
     base = run.cmd - run.cmd.min()
-    single = np.bincount(base)[base] == 1  # the piece is its whole command (a line)
+    single = (np.bincount(base)[base] == 1) & run.straight  # the piece is its whole command (a line)
     v = 1 + np.flatnonzero((run.cmd[:-1] != run.cmd[1:]) & single[:-1] & single[1:] & ~run.arc_vertex[1:-1])
     if v.size == 0:
         return cand
