@@ -74,6 +74,12 @@ class Geometry:
     change per mm of an arc whose end radius differs a little), start angle ``theta0``,
     ``kappa = sweep / length`` (rad/mm, signed) and axial rate ``w`` (mm per mm of path).
     ``|p'(s)| = 1`` exactly for lines, circles and helices (``dr = 0``).
+
+    Per axis ``i`` the circle part is ``rho A_i cos(th - phi_i)`` with ``A_i = hypot(e1_i,
+    e2_i)`` and ``phi_i = atan2(e2_i, e1_i)`` (:meth:`amplitude`): the plane may be any
+    (blend arcs lie in the plane of their corner).  An axis has either a circle part or
+    an axial rate, never both (``A_i w_i = 0``), which keeps every axis' turning points at
+    ``th = phi_i + k pi``.
     """
 
     c: FloatArray  # (g, m)
@@ -111,6 +117,11 @@ class Geometry:
         d2 = 2 * dr * k * tan - rho * k * k * nrm
         d3 = -3 * dr * k * k * nrm - rho * k**3 * tan
         return p, d1, d2, d3
+
+    def amplitude(self, g: IntArray) -> tuple[FloatArray, FloatArray]:
+        """``A`` and ``phi`` of rows ``g``, ``(q, m)`` each (see the class docstring)."""
+        e1, e2 = self.e1[g], self.e2[g]
+        return np.hypot(e1, e2), np.arctan2(e2, e1)
 
     def take(self, g: IntArray) -> Geometry:
         return Geometry(self.c[g], self.e1[g], self.e2[g], self.w[g], self.r0[g], self.dr[g], self.theta0[g],
@@ -332,11 +343,10 @@ def axis_bounds(traj: Trajectory) -> tuple[FloatArray, FloatArray, FloatArray]:
     th_a = geo.theta0[g] + geo.kappa[g] * law.s0_mm[bent]
     th_b = geo.theta0[g] + geo.kappa[g] * s_end
     lo, hi = np.minimum(th_a, th_b), np.maximum(th_a, th_b)
-    sin_b = _abs_sin_max(lo, hi)[:, None]
-    cos_b = _abs_sin_max(lo + np.pi / 2, hi + np.pi / 2)[:, None]
-    e1, e2 = np.abs(geo.e1[g]), np.abs(geo.e2[g])
-    t_b = sin_b * e1 + cos_b * e2  # |-sin e1 + cos e2|, the plane's axes being unit vectors
-    n_b = np.minimum(cos_b * e1 + sin_b * e2, 1.0)
+    amp, phi = geo.amplitude(g)
+    rel_lo, rel_hi = lo[:, None] - phi, hi[:, None] - phi
+    t_b = amp * _abs_sin_max(rel_lo, rel_hi)  # tangent component -A sin(th - phi)
+    n_b = amp * _abs_sin_max(rel_lo + np.pi / 2, rel_hi + np.pi / 2)  # normal component A cos(th - phi)
     k = np.abs(geo.kappa[g])[:, None]
     dr = np.abs(geo.dr[g])[:, None]
     rho = np.maximum(geo.r0[g], geo.r0[g] + geo.dr[g] * geo.length[g])[:, None]
@@ -387,16 +397,20 @@ def position_bounds(traj: Trajectory) -> tuple[FloatArray, FloatArray]:
     th_a = geo.theta0[g] + geo.kappa[g] * s_a
     th_b = geo.theta0[g] + geo.kappa[g] * s_b
     th_lo, th_hi = np.minimum(th_a, th_b), np.maximum(th_a, th_b)
-    first = np.ceil(th_lo / (np.pi / 2)) * (np.pi / 2)
-    plane = (geo.e1[g] != 0) | (geo.e2[g] != 0)
-    for q in range(4):
-        th = first + q * np.pi / 2
-        inside = th <= th_hi
-        if not inside.any():
+    amp, phi = geo.amplitude(g)
+    kap = np.where(geo.kappa[g] != 0, geo.kappa[g], 1.0)
+    blo, bhi = lo[bent], hi[bent]
+    for i in range(amp.shape[1]):
+        ax = amp[:, i] > 0
+        if not ax.any():
             continue
-        s = np.clip((th - geo.theta0[g]) / np.where(geo.kappa[g] != 0, geo.kappa[g], 1.0), 0, geo.length[g])
-        p, _, _, _ = geo.derivatives(g, s)
-        use = inside[:, None] & plane
-        lo[bent] = np.where(use, np.minimum(lo[bent], p), lo[bent])
-        hi[bent] = np.where(use, np.maximum(hi[bent], p), hi[bent])
+        first = phi[:, i] + np.ceil((th_lo - phi[:, i]) / np.pi) * np.pi  # turning points phi + k pi
+        for q in range(2):
+            th = first + q * np.pi
+            use = ax & (th <= th_hi)
+            s = np.clip((th - geo.theta0[g]) / kap, 0, geo.length[g])
+            p, _, _, _ = geo.derivatives(g, s)
+            blo[:, i] = np.where(use, np.minimum(blo[:, i], p[:, i]), blo[:, i])
+            bhi[:, i] = np.where(use, np.maximum(bhi[:, i], p[:, i]), bhi[:, i])
+    lo[bent], hi[bent] = blo, bhi
     return lo, hi

@@ -1,14 +1,14 @@
 """Exact step times on curved phases (arcs, helices, blend arcs): through angles, no chords.
 
 On a curved phase the axis positions are those of :class:`cncc.ir.trajectory.Geometry`
-at the path coordinate ``s(tau)`` of the phase's law.  For the planes G17/G18/G19 each
-axis is either a plane axis (``x = c + rho cos th`` or ``c + rho sin th``, ``th = theta0
-+ kappa s``) or an axial one (``x = c + w s``), so:
+at the path coordinate ``s(tau)`` of the phase's law.  Each axis is either a plane axis
+(``x = c + rho A cos(th - phi)``, ``th = theta0 + kappa s``, any plane: G17/G18/G19 arcs
+and blend arcs in the plane of their corner) or an axial one (``x = c + w s``), so:
 
-* the turning points of a plane axis are the angles ``k pi`` (cos) or ``pi/2 + k pi``
-  (sin): :func:`turning_times` gives the times where the phase's sweep crosses them;
+* the turning points of a plane axis are the angles ``phi + k pi``:
+  :func:`turning_times` gives the times where the phase's sweep crosses them;
 * a step boundary ``y`` inside a monotone piece is reached at the angle
-  ``k pi + acos(+-(y - c) / rho)`` (or ``s = (y - c) / w`` on an axial axis), and the
+  ``phi + k pi + acos(+-(y - c) / (rho A))`` (or ``s = (y - c) / w`` on an axial axis), and the
   time at that ``s`` is the root of the phase's cubic ``s(tau)``, solved by
   :func:`.roots.piece_times` like any constant-jerk piece.
 
@@ -33,11 +33,11 @@ MAX_SEGMENT_SWEEP_RAD = np.pi / 12
 point of any axis per segment, even where the speed changes within the phase)."""
 
 
-def _axis_kind(traj: Trajectory, g: I64, i: int) -> tuple[npt.NDArray[np.bool_], npt.NDArray[np.bool_]]:
-    """(cos axis, sin axis) masks of axis ``i`` on geometry rows ``g`` (else axial)."""
+def _axis_kind(traj: Trajectory, g: I64, i: int) -> tuple[F64, F64]:
+    """Amplitude ``A`` and phase ``phi`` of axis ``i`` on geometry rows ``g`` (``A = 0``: axial)."""
     assert traj.path is not None
     geo = traj.path.geometry
-    return geo.e1[g, i] != 0, geo.e2[g, i] != 0
+    return np.hypot(geo.e1[g, i], geo.e2[g, i]), np.arctan2(geo.e2[g, i], geo.e1[g, i])
 
 
 def _tau_at(traj: Trajectory, k: I64, s_target: F64, ta: F64, tb: F64) -> F64:
@@ -57,16 +57,15 @@ def turning_times(traj: Trajectory, k: I64, ta: F64, tb: F64, i: int) -> F64:
     assert traj.path is not None
     law, geo = traj.path, traj.path.geometry
     g = law.seg[k]
-    cos_ax, sin_ax = _axis_kind(traj, g, i)
+    amp, shift = _axis_kind(traj, g, i)
     s_a, _, _, _ = law.s_at(k, ta)
     s_b, _, _, _ = law.s_at(k, tb)
     th_a = geo.theta0[g] + geo.kappa[g] * s_a
     th_b = geo.theta0[g] + geo.kappa[g] * s_b
     lo, hi = np.minimum(th_a, th_b), np.maximum(th_a, th_b)
-    shift = np.where(sin_ax, np.pi / 2, 0.0)  # zeros of the axis' derivative: th = shift + m pi
-    m = np.ceil((lo - shift) / np.pi)
+    m = np.ceil((lo - shift) / np.pi)  # zeros of the axis' derivative: th = phi + m pi
     th = shift + m * np.pi
-    inside = (cos_ax | sin_ax) & (th > lo) & (th < hi)
+    inside = (amp > 1e-12) & (th > lo) & (th < hi)
     out = np.full(k.size, np.nan)
     if inside.any():
         sel = np.flatnonzero(inside)
@@ -86,26 +85,25 @@ def curved_step_times(traj: Trajectory, k: I64, i: int, tau_a: F64, tau_e: F64, 
     law, geo = traj.path, traj.path.geometry
     kk = np.repeat(k, counts)
     g = law.seg[kk]
-    cos_ax, sin_ax = _axis_kind(traj, g, i)
+    amp, shift = _axis_kind(traj, g, i)
     s_a, _, _, _ = law.s_at(k, tau_a)
     s_e, _, _, _ = law.s_at(k, tau_e)
     sa, se = np.repeat(s_a, counts), np.repeat(s_e, counts)
     kap = geo.kappa[g]
     c = geo.c[g, i]
-    # the monotone branch of each piece: its angles lie in [shift + m pi, shift + (m + 1) pi]
+    # the monotone branch of each piece: its angles lie in [phi + m pi, phi + (m + 1) pi]
     th_mid = geo.theta0[g] + kap * (sa + se) / 2
-    shift = np.where(sin_ax, np.pi / 2, 0.0)
     m = np.floor((th_mid - shift) / np.pi)
     sign = np.where(m % 2 == 0, 1.0, -1.0)
     base = shift + m * np.pi
     s = (sa + se) / 2
-    plane = cos_ax | sin_ax
+    plane = amp > 1e-12
     with np.errstate(divide="ignore", invalid="ignore"):
         for _ in range(3 if np.any(geo.dr[g] != 0) else 1):
-            rho = np.maximum(geo.r0[g] + geo.dr[g] * s, 1e-300)
-            # cos(th) = cos(base + phi) = sign cos(phi) on the cos axis; sin(th) = cos(th - pi/2) likewise
-            phi = np.arccos(np.clip(sign * (y - c) / rho, -1.0, 1.0))
-            s_plane = (base + phi - geo.theta0[g]) / np.where(kap != 0, kap, 1.0)
+            rho = np.maximum((geo.r0[g] + geo.dr[g] * s) * amp, 1e-300)
+            # cos(th - phi) = cos(base - phi + psi) = sign cos(psi)
+            psi = np.arccos(np.clip(sign * (y - c) / rho, -1.0, 1.0))
+            s_plane = (base + psi - geo.theta0[g]) / np.where(kap != 0, kap, 1.0)
             s_axial = (y - c) / np.where(geo.w[g, i] != 0, geo.w[g, i], 1.0)
             s = np.where(plane, s_plane, s_axial)
     lo, hi = np.minimum(sa, se), np.maximum(sa, se)

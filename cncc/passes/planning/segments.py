@@ -128,13 +128,11 @@ def _sin_bound(theta0: FloatArray, sweep: FloatArray, phase: float) -> FloatArra
 def arc_bounds(geo: Geometry) -> tuple[FloatArray, FloatArray]:
     """Per segment and axis: bounds of ``|p'(s)|`` and of the unit normal's components
     ``|n(s)|`` (``p'' = -rho kappa^2 n`` on a circle) over the whole segment, ``(g, 6)`` each."""
-    sweep = geo.kappa * geo.length
-    sin_b = _sin_bound(geo.theta0, sweep, 0.0)[:, None]
-    cos_b = _sin_bound(geo.theta0, sweep, np.pi / 2)[:, None]
-    e1, e2 = np.abs(geo.e1), np.abs(geo.e2)
-    # tangent -sin e1 + cos e2, normal cos e1 + sin e2 (the plane's axes are unit vectors)
-    t_b = sin_b * e1 + cos_b * e2
-    n_b = cos_b * e1 + sin_b * e2
+    sweep = (geo.kappa * geo.length)[:, None]
+    amp, phi = geo.amplitude(np.arange(geo.count))
+    start = geo.theta0[:, None] - phi
+    t_b = amp * _sin_bound(start, sweep, 0.0)  # tangent component -A sin(th - phi)
+    n_b = amp * _sin_bound(start, sweep, np.pi / 2)  # normal component A cos(th - phi)
     rho = np.maximum(geo.r0, geo.r0 + geo.dr * geo.length)[:, None]
     speed = rho * np.abs(geo.kappa)[:, None] * t_b + np.abs(geo.w) + np.abs(geo.dr)[:, None] * n_b
     return speed, np.minimum(n_b, 1.0)
