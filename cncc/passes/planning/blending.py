@@ -153,7 +153,8 @@ def velocity_step_caps(seg: Segments, limits: AxisLimits, period_s: float) -> Fl
 
 
 CURVATURE_STEP_SHARE = 0.5
-"""Share of ``j_i T`` the centripetal acceleration step at a curvature jump may take."""
+"""Share of ``j_i T`` the centripetal acceleration step at a curvature jump may take where
+the path also turns (the tangential step takes the other half); all of it at tangent joints."""
 
 
 def curvature_step_caps(seg: Segments, limits: AxisLimits, period_s: float) -> FloatArray:
@@ -166,9 +167,12 @@ def curvature_step_caps(seg: Segments, limits: AxisLimits, period_s: float) -> F
     _, _, c0, _ = geo.derivatives(rows, np.zeros(seg.count))
     _, _, c1, _ = geo.derivatives(rows, seg.length)
     jump = np.abs(c0[1:] - c1[:-1])
-    budget = CURVATURE_STEP_SHARE * limits.jmax_mm_s3 * period_s
+    # a tangent joint has no tangential acceleration step: the whole j T is the centripetal one's
+    tangent = seg.turn().max(axis=1, initial=0.0) < 1e-9
+    share = np.where(tangent, 1.0, CURVATURE_STEP_SHARE)[:, None]
+    budget = share * limits.jmax_mm_s3[None, :] * period_s
     with np.errstate(divide="ignore"):
-        v2 = np.where(jump > 1e-12, budget[None, :] / np.maximum(jump, 1e-300), np.inf).min(axis=1)
+        v2 = np.where(jump > 1e-12, budget / np.maximum(jump, 1e-300), np.inf).min(axis=1)
     out: FloatArray = np.sqrt(v2)
     return out
 

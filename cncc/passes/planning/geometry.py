@@ -92,6 +92,7 @@ class _Builder:
     arcv: list[bool] = field(default_factory=list)  # the piece's end point is inside an arc
     geo: list[int] = field(default_factory=list)  # row of ``arcs`` (native arc pieces) or -1
     arcs: list[Geometry] = field(default_factory=list)
+    native: bool = False  # -O2: the run keeps ``geo`` even without arcs (its corners become blend arcs)
 
     def add_line(self, start: tuple[float, ...], end: tuple[float, ...], cmd: int, rapid: bool, feed: float,
                  tol: float) -> None:
@@ -129,8 +130,8 @@ class _Builder:
         pts = np.array([self.start, *self.points], dtype=float)
         arcv = np.array([False, *self.arcv], dtype=bool)
         arcv[-1] = False
-        geo = np.array(self.geo, dtype=np.int64) if self.arcs else None
-        arcs = Geometry.concat(self.arcs, pts.shape[1]) if self.arcs else None
+        geo = np.array(self.geo, dtype=np.int64) if self.arcs or self.native else None
+        arcs = Geometry.concat(self.arcs, pts.shape[1]) if self.arcs or self.native else None
         return PathRun(pts, np.array(self.cmd, dtype=np.int64), np.array(self.rapid, dtype=bool),
                        np.array(self.feed, dtype=float), np.array(self.tol, dtype=float), arcv, geo=geo, arcs=arcs)
 
@@ -139,7 +140,8 @@ def build_runs(cmds: Sequence[Command], machine: MachineModel, limits: AxisLimit
                sink: DiagnosticSink) -> list[Run]:
     """Split the command list into runs (see the module docstring)."""
     runs: list[Run] = []
-    b = _Builder()
+    native = level == 2 and NATIVE_ARCS
+    b = _Builder(native=native)
     warned: set[str] = set()
 
     def close() -> None:
@@ -147,7 +149,7 @@ def build_runs(cmds: Sequence[Command], machine: MachineModel, limits: AxisLimit
         run = b.finish()
         if run is not None:
             runs.append(run)
-        b = _Builder()
+        b = _Builder(native=native)
 
     for index, cmd in enumerate(cmds):
         match cmd:
