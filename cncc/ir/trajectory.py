@@ -323,11 +323,12 @@ def _abs_quad_max(c0: FloatArray, c1: FloatArray, c2: FloatArray, t: FloatArray)
 def axis_bounds(traj: Trajectory) -> tuple[FloatArray, FloatArray, FloatArray]:
     """Upper bounds of ``|v_i|``, ``|a_i|``, ``|j_i|`` over each phase, ``(n, m)`` each.
 
-    Straight phases: the exact extremes of their cubics.  Curved phases: the triangle
-    inequality on ``v = p' s'``, ``a = p'' s'^2 + p' s''``, ``j = p''' s'^3 + 3 p'' s' s''
-    + p' s'''`` with each axis' largest ``|p'|``, ``|p''|``, ``|p'''|`` over the phase's
-    own sweep and the largest ``|s'|``, ``|s''|``, ``|s'''|`` of its law (rigorous, and
-    tight on circles at constant speed)."""
+    Straight phases: the exact extremes of their cubics.  Curved phases: the smaller of
+    two rigorous bounds, the triangle inequality on ``v = p' s'``, ``a = p'' s'^2 + p' s''``,
+    ``j = p''' s'^3 + 3 p'' s' s'' + p' s'''`` with each axis' largest ``|p'|``, ``|p''|``,
+    ``|p'''|`` over the phase's own sweep, and the orthogonal form of a plane axis
+    (tangential and normal parts ``-A sin``, ``A cos`` of one angle: ``A hypot(...)``);
+    both with the largest ``|s'|``, ``|s''|``, ``|s'''|`` of the law."""
     d = traj.duration_s[:, None]
     v0, a0, j = traj.v0_mm_s, traj.a0_mm_s2, traj.j_mm_s3
     vb = _abs_quad_max(v0, a0, j / 2, d)
@@ -358,8 +359,19 @@ def axis_bounds(traj: Trajectory) -> tuple[FloatArray, FloatArray, FloatArray]:
     sdd = np.maximum(np.abs(sa), np.abs(sa + sj * t))[:, None]
     sddd = np.abs(sj)[:, None]
     vb[bent] = p1 * sd
-    ab[bent] = p2 * sd * sd + p1 * sdd
-    jb[bent] = p3 * sd**3 + 3 * p2 * sd * sdd + p1 * sddd
+    ab_tri = p2 * sd * sd + p1 * sdd
+    jb_tri = p3 * sd**3 + 3 * p2 * sd * sdd + p1 * sddd
+    # plane axes: tangential and normal parts are -A sin and A cos of one angle (orthogonal);
+    # the radius change's own terms (dr) are added on top
+    c1, c2, c3 = rho * k, rho * k * k, rho * k**3
+    ab_orth = amp * (np.hypot(c1 * sdd, c2 * sd * sd) + dr * sdd + 2 * dr * k * sd * sd)
+    jb_orth = amp * (np.hypot(c1 * sddd + c3 * sd**3, 3 * c2 * sd * sdd)
+                     + dr * sddd + 6 * dr * k * sd * sdd + 3 * dr * k * k * sd**3)
+    axial = np.abs(geo.w[g])
+    ab_orth += axial * sdd
+    jb_orth += axial * sddd
+    ab[bent] = np.minimum(ab_tri, ab_orth)
+    jb[bent] = np.minimum(jb_tri, jb_orth)
     return vb, ab, jb
 
 

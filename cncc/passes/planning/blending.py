@@ -192,9 +192,9 @@ def reduce_accel(seg: Segments, limits: AxisLimits, period_s: float) -> FloatArr
     np.add.at(diff, first, load)
     np.add.at(diff, np.maximum(last, first), -load)
     n_load = np.cumsum(diff, axis=0)[:-1]
-    if seg.a_normal is not None:  # arcs: their centripetal share is taken too
-        n_load = n_load + seg.a_normal
     left = np.maximum(limits.amax_mm_s2[None, :] - n_load, 1e-6 * limits.amax_mm_s2[None, :])
+    if seg.a_normal is not None:  # arcs: the centripetal part is orthogonal to the tangential one
+        left = np.maximum(np.sqrt(np.maximum(left**2 - seg.a_normal**2, 0.0)), 1e-6 * limits.amax_mm_s2[None, :])
     au = np.abs(seg.u)
     with np.errstate(divide="ignore"):
         acap = np.where(au > 1e-12, left / np.maximum(au, 1e-300), np.inf).min(axis=1)

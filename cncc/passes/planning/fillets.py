@@ -18,7 +18,9 @@ Per corner ``v`` between pieces ``v - 1`` (tangent ``t_in`` at its end) and ``v`
    ``S``: chord ``c = S - E`` at angle ``alpha`` to the tangent, sweep ``2 alpha``, radius
    ``|c| / (2 sin alpha)``.  Between two lines it is the symmetric blend, tangent at both
    ends; next to an arc its end tangent differs from the arc's by about ``d / (2 r)``, a
-   small corner that the velocity-step rule caps.
+   small corner that the velocity-step rule caps.  A sliver of a piece left between two
+   blends (a smooth polyline, where both blends want more than half of it) joins the
+   incoming blend, so consecutive blends meet with nearly the same curvature.
 
 The blend belongs to the incoming command (verify measures it against the command and
 its neighbours).  ``origin`` maps both new points of a rounded corner to its vertex.
@@ -36,6 +38,9 @@ RADIUS_SHARE = 0.25
 
 ARC_SHARE = 0.1
 """... and by at most the length over which the arc leaves its tangent by this share of the tolerance."""
+
+SLIVER_SHARE = 0.1
+"""A piece left shorter than this share of the incoming blend's tangent length joins that blend."""
 
 
 def _piece_shapes(run: PathRun) -> tuple[Geometry, FloatArray, FloatArray]:
@@ -97,7 +102,13 @@ def round_native(run: PathRun, sharp: np.ndarray | None = None) -> PathRun:
     trim_start = np.zeros(k)
     trim_end[v] = d_t[v]
     trim_start[v + 1] = d_t[v]
-    p_e, tan_e, _, _ = geo.derivatives(v, length[v] - d_t[v])
+    # a sliver of line left between two blends would step the curvature to zero and back:
+    # the incoming blend takes it (its end tangent then turns by about sliver / (4 d) more)
+    rest = length - trim_start - trim_end
+    sliver = (rest > 0) & (rest <= SLIVER_SHARE * trim_end) & (trim_start > 0)
+    trim_end = np.where(sliver, trim_end + rest, trim_end)
+    d_in = trim_end[v]  # tangent length on the incoming side of each corner
+    p_e, tan_e, _, _ = geo.derivatives(v, length[v] - d_in)
     p_s, _, _, _ = geo.derivatives(v + 1, d_t[v])
     tan_e /= np.maximum(np.linalg.norm(tan_e, axis=1), 1e-300)[:, None]
     blend = _blend_arcs(p_e, tan_e, p_s)

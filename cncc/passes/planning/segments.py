@@ -9,11 +9,14 @@ segments):
 * native arc segments (-O2, :data:`geometry.NATIVE_ARCS`) are planned on their path
   coordinate: ``u`` is then the componentwise bound of ``|p'(s)|`` over the sweep (what
   the per-axis caps divide by), ``u_in`` / ``u_out`` the tangents at both ends, ``geo``
-  the exact shape; their caps keep every axis within its limits at every instant by the
-  triangle inequality on ``v = p' s'``, ``a = p'' s'^2 + p' s''`` and
-  ``j = p''' s'^3 + 3 p'' s' s'' + p' s'''``: the centripetal part ``v^2 / r`` takes
-  at most ``NORMAL_SHARE`` of the plane axes' acceleration, ``v^3 / r^2`` at most
-  ``JERK_SHARES[0]`` of their jerk, ``3 v a / r`` ``JERK_SHARES[1]``, the path jerk the rest;
+  the exact shape.  Their caps keep every axis within its limits at every instant: on a
+  circle of radius ``r`` a plane axis of amplitude ``A`` has (tangential and normal parts
+  are ``-A sin`` and ``A cos`` of one angle) ``|a_i| <= A sqrt(s''^2 + (v^2/r)^2)`` and
+  ``|j_i| <= A sqrt((s''' + v^3/r^2)^2 + (3 v s''/r)^2)``, an axial axis ``|w_i| s''`` and
+  ``|w_i| s'''``.  The speed cap keeps ``v^2 / r`` within ``NORMAL_SHARE`` of the plane
+  axes' acceleration and ``v^3 / r^2`` within ``JERK_SHARES[0]`` of their jerk, the path
+  jerk gets ``JERK_SHARES[1]`` of its straight cap, and the path acceleration is the
+  largest that both bounds leave (``arc_caps``);
 * ``vvert`` (``k + 1``) speed caps at the vertices, filled by a corner rule:
   :func:`junction_deviation` (grbl/Klipper), :func:`speed_step` (SZGH) or the
   velocity-step rule of ``blending.py``; ``vvert[0]`` and ``vvert[k]`` are the start
@@ -32,8 +35,13 @@ from cncc.ir.trajectory import FloatArray, Geometry, Limit
 from cncc.passes.planning.geometry import NORMAL_SHARE, PathRun
 from cncc.passes.planning.limits import AxisLimits, path_limit
 
-JERK_SHARES = (0.25, 0.25, 0.5)
-"""Shares of the plane axes' jerk an arc leaves to ``v^3/r^2``, ``3 v a / r`` and the path jerk."""
+JERK_SHARES = (0.25, 0.5)
+"""Shares of the plane axes' jerk an arc leaves to ``v^3/r^2`` and to the path jerk (``3 v a / r``
+takes what their sum leaves, orthogonally)."""
+
+DR_MARGIN = 4.0
+"""Arcs whose end radius differs (``dr != 0``) are capped ``1 / (1 + DR_MARGIN eps)`` lower,
+``eps = |dr| / (rho kappa)``: the radius change's own terms in ``p', p'', p'''``."""
 
 
 @dataclass
@@ -174,18 +182,41 @@ def _with_arcs(run: PathRun, limits: AxisLimits, machine: MachineModel) -> Segme
     rho_max = np.maximum(arcs.r0, arcs.r0 + arcs.dr * arcs.length)
     stretch = np.sqrt(arcs.dr**2 + (rho_max * arcs.kappa) ** 2 + np.einsum("ij,ij->i", arcs.w, arcs.w))
     feed = np.minimum(run.feed_mm_s[idx], machine.max_feed_mm_min / 60.0)
-    v_arc = np.minimum(np.minimum(seg.vcap, v_cent), feed / np.maximum(stretch, 1.0))
-    a_norm = (v_arc * v_arc / r)[:, None] * nb
-    left = np.maximum(limits.amax_mm_s2[None, :] - a_norm, 1e-6 * limits.amax_mm_s2[None, :])
-    with np.errstate(divide="ignore"):
-        a_tan = np.where(ub > 1e-12, left / np.maximum(ub, 1e-300), np.inf).min(axis=1)
-    a_arc = np.minimum(a_tan, JERK_SHARES[1] * j_plane * r / (3 * np.maximum(v_arc, 1e-9)))
+    eps = np.abs(arcs.dr) / np.maximum(rho_max * np.abs(arcs.kappa), 1e-12)
+    shrink = 1.0 / (1.0 + DR_MARGIN * eps)
+    v_arc = np.minimum(np.minimum(seg.vcap, v_cent), feed / np.maximum(stretch, 1.0)) * shrink
+    j_arc = JERK_SHARES[1] * seg.jcap * shrink
+    a_arc, a_norm = arc_caps(arcs, v_arc, j_arc, limits, shrink)
     seg.vlim = np.where(is_arc & (v_cent < seg.vcap), int(Limit.CENTRIPETAL), seg.vlim).astype(np.int8)
     seg.vcap = np.where(is_arc, v_arc, seg.vcap)
     seg.acap = np.where(is_arc, a_arc, seg.acap)
-    seg.jcap = np.where(is_arc, JERK_SHARES[2] * seg.jcap, seg.jcap)
+    seg.jcap = np.where(is_arc, j_arc, seg.jcap)
     seg.a_normal = np.where(arc_col, a_norm, 0.0)
     return seg
+
+
+def arc_caps(arcs: Geometry, v: FloatArray, jerk: FloatArray, limits: AxisLimits, share: FloatArray
+             ) -> tuple[FloatArray, FloatArray]:
+    """Largest path acceleration of each arc at speeds up to ``v`` and path jerk ``jerk``
+    that keeps every axis within ``share`` of its limits (the module docstring's bounds),
+    and the per-axis centripetal acceleration bound at ``v``, ``(g, 6)``."""
+    amp, _ = arcs.amplitude(np.arange(arcs.count))
+    rho = np.maximum(arcs.r0, arcs.r0 + arcs.dr * arcs.length)[:, None]
+    kap = np.abs(arcs.kappa)[:, None]
+    p1, p2, p3 = rho * kap, rho * kap**2, rho * kap**3
+    vv, jj = v[:, None], jerk[:, None]
+    amax, jmax = limits.amax_mm_s2[None, :] * share[:, None], limits.jmax_mm_s3[None, :] * share[:, None]
+    plane = amp > 1e-12
+    with np.errstate(divide="ignore", invalid="ignore"):
+        a_room = np.sqrt(np.maximum((amax / np.where(plane, amp, 1.0)) ** 2 - (p2 * vv * vv) ** 2, 0.0))
+        a_acc = np.where(plane, a_room / np.maximum(p1, 1e-300), np.inf)
+        j_room = np.sqrt(np.maximum((jmax / np.where(plane, amp, 1.0)) ** 2 - (p1 * jj + p3 * vv**3) ** 2, 0.0))
+        a_jerk = np.where(plane, j_room / np.maximum(3 * p2 * vv, 1e-300), np.inf)
+        axial = np.abs(arcs.w)
+        a_axial = np.where(axial > 1e-12, amax / np.maximum(axial, 1e-300), np.inf)
+    acap = np.minimum(np.minimum(a_acc, a_jerk), a_axial).min(axis=1)
+    a_norm = np.where(plane, amp * p2 * vv * vv, 0.0)
+    return np.maximum(acap, 1e-9), a_norm
 
 
 def _line_segments(run: PathRun, idx: np.ndarray, p0: FloatArray, u: FloatArray, length: FloatArray,
