@@ -17,10 +17,12 @@ Per corner ``v`` between pieces ``v - 1`` (tangent ``t_in`` at its end) and ``v`
 3. the blend is the circle from ``E``, tangent to the incoming piece there, through
    ``S``: chord ``c = S - E`` at angle ``alpha`` to the tangent, sweep ``2 alpha``, radius
    ``|c| / (2 sin alpha)``.  Between two lines it is the symmetric blend, tangent at both
-   ends; next to an arc its end tangent differs from the arc's by about ``d / (2 r)``, a
-   small corner that the velocity-step rule caps.  A sliver of a piece left between two
-   blends (a smooth polyline, where both blends want more than half of it) joins the
-   incoming blend, so consecutive blends meet with nearly the same curvature.
+   ends.  Next to an arc (and where a sliver joined, below) one circle cannot be tangent
+   at both ends: the blend is the equal-leg **biarc** from ``(E, t_E)`` to ``(S, t_S)``,
+   two such circles meeting tangentially, so the velocity is continuous (up to the
+   non-planarity of a helix's corner).  A sliver of a piece left between two blends (a
+   smooth polyline, where both blends want more than half of it) joins the incoming
+   blend, so consecutive blends meet with nearly the same curvature.
 
 The blend belongs to the incoming command (verify measures it against the command and
 its neighbours).  ``origin`` maps both new points of a rounded corner to its vertex.
@@ -109,16 +111,54 @@ def round_native(run: PathRun, sharp: np.ndarray | None = None) -> PathRun:
     trim_end = np.where(sliver, trim_end + rest, trim_end)
     d_in = trim_end[v]  # tangent length on the incoming side of each corner
     p_e, tan_e, _, _ = geo.derivatives(v, length[v] - d_in)
-    p_s, _, _, _ = geo.derivatives(v + 1, d_t[v])
+    p_s, tan_s, _, _ = geo.derivatives(v + 1, d_t[v])
     tan_e /= np.maximum(np.linalg.norm(tan_e, axis=1), 1e-300)[:, None]
-    blend = _blend_arcs(p_e, tan_e, p_s)
-    keep = blend.length > 1e-9
+    tan_s /= np.maximum(np.linalg.norm(tan_s, axis=1), 1e-300)[:, None]
+    # next to an arc (or after a sliver) one circle cannot be tangent at both ends: a biarc is
+    two = np.isfinite(r_near[v]) | sliver[v]
+    junction, tan_j = _biarc_junction(p_e[two], tan_e[two], p_s[two], tan_s[two])
+    first = _blend_arcs(p_e, tan_e, np.where(two[:, None], _scatter(junction, two, p_s), p_s))
+    second = _blend_arcs(junction, tan_j, p_s[two])
+    keep = first.length > 1e-9
+    keep[two] &= second.length > 1e-9
     if not keep.all():  # degenerate blends: leave those corners sharp
         bad = np.zeros(k + 1, bool)
         bad[v[~keep] + 1] = True
         return round_native(run, bad if sharp is None else (sharp | bad))
     pieces = _trimmed(geo, trim_start, trim_end)
-    return _assemble(run, pieces, blend, v)
+    # blend rows in corner order: the first arc of every corner, the second of a biarc after it
+    count = 1 + two.astype(np.int64)
+    row_first = np.cumsum(count) - count
+    order = np.empty(int(count.sum()), np.int64)
+    order[row_first] = np.arange(v.size)
+    order[row_first[two] + 1] = v.size + np.arange(int(two.sum()))
+    m = run.points.shape[1]
+    blend = Geometry.concat([first, second], m).take(order)
+    return _assemble(run, pieces, blend, v, count)
+
+
+def _scatter(rows: FloatArray, mask: np.ndarray, fill: FloatArray) -> FloatArray:
+    out = fill.copy()
+    out[mask] = rows
+    return out
+
+
+def _biarc_junction(p0: FloatArray, t0: FloatArray, p1: FloatArray, t1: FloatArray) -> tuple[FloatArray, FloatArray]:
+    """Junction point and tangent of the equal-leg biarc from ``(p0, t0)`` to ``(p1, t1)``:
+    control points ``q0 = p0 + d t0``, ``q1 = p1 - d t1`` with ``|q1 - q0| = 2 d``; the two
+    circles meet tangentially at ``(q0 + q1) / 2`` with tangent ``q1 - q0``."""
+    vec = p1 - p0
+    tt = t0 + t1
+    vt = np.einsum("ij,ij->i", vec, tt)
+    vv = np.einsum("ij,ij->i", vec, vec)
+    c = np.maximum(1.0 - np.einsum("ij,ij->i", t0, t1), 0.0)
+    # the positive root of 2 c d^2 + 2 vt d - vv = 0, in the form without cancellation
+    d = vv / np.maximum(vt + np.sqrt(vt * vt + 2.0 * c * vv), 1e-300)
+    q0 = p0 + d[:, None] * t0
+    q1 = p1 - d[:, None] * t1
+    tj = q1 - q0
+    tj /= np.maximum(np.linalg.norm(tj, axis=1), 1e-300)[:, None]
+    return (q0 + q1) / 2, tj
 
 
 def _blend_arcs(p_e: FloatArray, tan_e: FloatArray, p_s: FloatArray) -> Geometry:
@@ -140,22 +180,25 @@ def _blend_arcs(p_e: FloatArray, tan_e: FloatArray, p_s: FloatArray) -> Geometry
                     sweep / np.maximum(arc_len, 1e-300), np.where(off > 1e-12, arc_len, 0.0))
 
 
-def _assemble(run: PathRun, pieces: Geometry, blend: Geometry, v: np.ndarray) -> PathRun:
-    """New run: each trimmed piece, then the blend of the corner at its end (if any)."""
+def _assemble(run: PathRun, pieces: Geometry, blend: Geometry, v: np.ndarray, count: np.ndarray) -> PathRun:
+    """New run: each trimmed piece, then the ``count`` blend arcs of the corner at its end (if any)."""
     k = run.cmd.size
-    has = np.zeros(k, bool)
-    has[v] = True  # piece m is followed by a blend
-    per = 1 + has.astype(np.int64)
+    nblend = np.zeros(k, np.int64)
+    nblend[v] = count  # piece m is followed by its corner's blend arcs
+    per = 1 + nblend
     first = np.cumsum(per) - per  # new index of each trimmed piece
     n = int(per.sum())
+    owner = np.repeat(np.arange(v.size), count)  # corner of each blend row
+    sub = np.arange(owner.size) - (np.cumsum(count) - count)[owner]
+    slot = first[v][owner] + 1 + sub  # new index of each blend row
     is_blend = np.zeros(n, bool)
-    is_blend[first[v] + 1] = True
+    is_blend[slot] = True
     src = np.repeat(np.arange(k), per)  # the original piece (a blend: the incoming one)
     m = run.points.shape[1]
     # Geometry of every new piece: trimmed pieces and blends interleaved
     order = np.empty(n, np.int64)
     order[first] = np.arange(k)
-    order[first[v] + 1] = k + np.arange(v.size)
+    order[slot] = k + np.arange(owner.size)
     allg = Geometry.concat([pieces, blend], m).take(order)
     starts, _, _, _ = allg.derivatives(np.arange(n), np.zeros(n))
     end, _, _, _ = allg.derivatives(np.array([n - 1]), allg.length[-1:])

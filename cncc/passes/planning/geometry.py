@@ -267,16 +267,42 @@ def arc_geometry(cmd: Arc) -> Geometry | None:
     end = np.array(cmd.end, float)
     axial = end - start
     axial[[f, s]] = 0.0
+    c = start.copy()
+    c[f], c[s] = cmd.center[f], cmd.center[s]
+    circle = _exact_circle(start[[f, s]], end[[f, s]], np.array([c[f], c[s]]), sweep)
+    if circle is not None:  # a circle through both ends: |p'| = 1, no radius change
+        (c[f], c[s]), r0 = circle
+        r1 = r0
+        a0 = math.atan2(start[s] - c[s], start[f] - c[f])
     length = math.hypot(abs(sweep) * (r0 + r1) / 2, float(np.linalg.norm(axial)))
     if length < 1e-9:
         return None
-    c = start.copy()
-    c[f], c[s] = cmd.center[f], cmd.center[s]
     e1, e2 = np.zeros(6), np.zeros(6)
     e1[f], e2[s] = 1.0, 1.0
     one = np.ones(1)
     return Geometry(c[None, :], e1[None, :], e2[None, :], (axial / length)[None, :], one * r0,
                     one * ((r1 - r0) / length), one * a0, one * (sweep / length), one * length)
+
+
+def _exact_circle(p0: FloatArray, p1: FloatArray, centre: FloatArray, sweep: float
+                  ) -> tuple[tuple[float, float], float] | None:
+    """Centre and radius of the circle through ``p0`` and ``p1`` (in the plane) that sweeps
+    ``sweep`` between them, next to the programmed ``centre`` (whose two radii may differ a
+    little, within arc-check's tolerance); None where the ends already share the radius or
+    the chord is too short to tell."""
+    if abs(float(np.linalg.norm(p0 - centre)) - float(np.linalg.norm(p1 - centre))) < 1e-12:
+        return None
+    chord = p1 - p0
+    half = float(np.linalg.norm(chord)) / 2
+    sin_half = abs(math.sin(sweep / 2))
+    if half < 1e-9 or sin_half < 1e-6:
+        return None
+    radius = half / sin_half
+    mid = (p0 + p1) / 2
+    normal = np.array([-chord[1], chord[0]]) / (2 * half)
+    h = math.sqrt(max(radius * radius - half * half, 0.0))
+    best = min((mid + h * normal, mid - h * normal), key=lambda c: float(np.linalg.norm(c - centre)))
+    return (float(best[0]), float(best[1])), radius
 
 
 def arc_points(cmd: Arc, sag_mm: float, chord_max_mm: float = math.inf) -> FloatArray:
