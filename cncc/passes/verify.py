@@ -6,8 +6,11 @@ API::
     report = verify_trajectory(traj, cmds, machine, sink, corner_rule=rule, check_dynamics=True)
     report.count        # number of violations (each also emitted, first few per kind)
 
-It shares no code with the planners: it reads only the Trajectory arrays, the
-commands and the machine model, and checks each constant-jerk phase analytically.
+It shares no code with the planners: it reads only the Trajectory, the commands and
+the machine model, and checks each constant-jerk phase analytically: phase ends exactly
+(``Trajectory.end_states``, arcs included), per-axis extremes by
+:func:`cncc.ir.trajectory.axis_bounds` (exact on straight phases, a rigorous bound on
+arcs and helices).
 
 * E0616 continuity: phases contiguous in time and position.
 * E0610 velocity: per-axis ``|v|`` (endpoints and the stationary point of the
@@ -53,7 +56,7 @@ from cncc.diagnostics import DiagnosticSink
 from cncc.ir.commands import Arc, Command, Linear, Rapid
 from cncc.ir.frame import AXES
 from cncc.ir.machine import CornerRule, MachineModel, RapidMode
-from cncc.ir.trajectory import FloatArray, Trajectory
+from cncc.ir.trajectory import FloatArray, Trajectory, axis_bounds, position_bounds
 from cncc.passes import Pass, PassContext, register
 from cncc.source import NO_SPAN
 
@@ -142,21 +145,17 @@ def verify_trajectory(traj: Trajectory, cmds: Sequence[Command], machine: Machin
         if idx.size > MAX_REPORTS:
             sink.emit(code, NO_SPAN, f"{idx.size - MAX_REPORTS} more of: {what}")
 
-    d = traj.duration_s[:, None]
-    v0, a0, j = traj.v0_mm_s, traj.a0_mm_s2, traj.j_mm_s3
-    p_end = traj.p0_mm + v0 * d + a0 * d**2 / 2 + j * d**3 / 6
-    v_end = v0 + a0 * d + j * d**2 / 2
-    a_end = a0 + j * d
+    v0 = traj.v0_mm_s
+    p_end, v_end, a_end, _ = traj.end_states()  # exact, arcs included
     _continuity(traj, p_end, emit)
     vmax = np.where(table.rapid[ci][:, None], lim["rapid"][None, :], lim["v"][None, :])
-    peak = _abs_peak_v(v0, a0, j, traj.duration_s, v_end)
+    peak, a_peak, j_peak = axis_bounds(traj)
     bad_v = (peak > vmax * (1 + REL) + 1e-9).any(axis=1)
     emit(dg.VERIFY_VELOCITY, bad_v, "an axis velocity exceeds its limit")
     if check_dynamics:
         amax = lim["a"][None, :] * (1 + REL) + 1e-9
-        emit(dg.VERIFY_ACCEL, ((np.abs(a0) > amax) | (np.abs(a_end) > amax)).any(axis=1),
-             "an axis acceleration exceeds its limit")
-        emit(dg.VERIFY_JERK, (np.abs(j) > lim["j"][None, :] * (1 + REL) + 1e-9).any(axis=1),
+        emit(dg.VERIFY_ACCEL, (a_peak > amax).any(axis=1), "an axis acceleration exceeds its limit")
+        emit(dg.VERIFY_JERK, (j_peak > lim["j"][None, :] * (1 + REL) + 1e-9).any(axis=1),
              "an axis jerk exceeds its limit")
         if strict:
             _strict(traj, lim, rule, machine, jerk_limited, emit)
@@ -166,17 +165,18 @@ def verify_trajectory(traj: Trajectory, cmds: Sequence[Command], machine: Machin
         if jerk_limited:
             emit(dg.VERIFY_ACCEL_STEP, _accel_steps(traj, a_end, lim["j"], machine.interpolation_period_s),
                  "an acceleration step exceeds the jerk limit over one interpolation period")
+    p_mid, v_mid, _, _ = traj.states(np.arange(traj.phase_count), traj.duration_s / 2)
     speed = np.maximum(np.linalg.norm(v0, axis=1), np.linalg.norm(v_end, axis=1))
-    speed = np.maximum(speed, np.linalg.norm(_v_at(v0, a0, j, traj.duration_s / 2), axis=1))
+    speed = np.maximum(speed, np.linalg.norm(v_mid, axis=1))
     emit(dg.VERIFY_FEED, speed > table.feed_mm_s[ci] * (1 + REL) + 1e-9, "the path speed exceeds the programmed feed")
     if check_path:
         independent = table.rapid[ci] & (machine.rapid_mode is RapidMode.INDEPENDENT)
-        dev = _deviation(traj, p_end, cmds, table, ci)
+        dev = _deviation(traj, p_mid, p_end, cmds, table, ci)
         allowed = table.tol_mm[ci] + machine.arc_tolerance_mm + 1e-6
         emit(dg.VERIFY_PATH, (dev > allowed) & ~independent, "the trajectory leaves the programmed path")
     if not check_soft_limits:
         return report
-    lo, hi = _extent(traj.p0_mm, p_end, v0, a0, j, traj.duration_s)
+    lo, hi = position_bounds(traj)
     emit(dg.VERIFY_SOFT_LIMIT, ((lo < lim["lo"] - 1e-6) | (hi > lim["hi"] + 1e-6)).any(axis=1),
          "an axis leaves its soft limits")
     return report
@@ -219,21 +219,6 @@ def _is_cubic(traj: Trajectory) -> bool:
     if curved is not None and bool(np.asarray(curved).any()):
         return False
     return all(isinstance(getattr(traj, name, None), np.ndarray) for name in ("v0_mm_s", "a0_mm_s2", "j_mm_s3"))
-
-
-def _v_at(v0: FloatArray, a0: FloatArray, j: FloatArray, tau: FloatArray) -> FloatArray:
-    t = tau[:, None]
-    out: FloatArray = v0 + a0 * t + j * t * t / 2
-    return out
-
-
-def _abs_peak_v(v0: FloatArray, a0: FloatArray, j: FloatArray, dur: FloatArray, v_end: FloatArray) -> FloatArray:
-    with np.errstate(divide="ignore", invalid="ignore"):
-        ts = np.where(j != 0, -a0 / j, 0.0)
-    inside = (ts > 0) & (ts < dur[:, None])
-    vs = v0 + a0 * ts + j * ts * ts / 2
-    out: FloatArray = np.maximum(np.maximum(np.abs(v0), np.abs(v_end)), np.where(inside, np.abs(vs), 0.0))
-    return out
 
 
 def _continuity(traj: Trajectory, p_end: FloatArray, emit: object) -> None:
@@ -314,8 +299,8 @@ def _smeared(traj: Trajectory, step: FloatArray, a_end: FloatArray, amax: FloatA
     bad: np.ndarray = np.asarray(~(start_ok.all(axis=1) & end_ok.all(axis=1)))
     t_box = t_b + period  # the smear of each step ends here
     k = np.clip(np.searchsorted(traj.t0_s, t_box, side="left") - 1, 0, n - 1)
-    tau = np.clip(t_box - traj.t0_s[k], 0, traj.duration_s[k])[:, None]
-    a_at = traj.a0_mm_s2[k] + traj.j_mm_s3[k] * tau
+    tau = np.clip(t_box - traj.t0_s[k], 0, traj.duration_s[k])
+    _, _, a_at, _ = traj.states(k, tau)
     inside = (t_box < t_b[-1])[:, None]
     box_ok = np.abs(np.where(inside, a_at, 0.0) + box(t_box, True)) <= amax * (1 + REL) + 1e-6
     bad_box = np.asarray(~box_ok.all(axis=1))
@@ -323,28 +308,11 @@ def _smeared(traj: Trajectory, step: FloatArray, a_end: FloatArray, amax: FloatA
     return bad
 
 
-def _extent(p0: FloatArray, p_end: FloatArray, v0: FloatArray, a0: FloatArray, j: FloatArray, dur: FloatArray
-            ) -> tuple[FloatArray, FloatArray]:
-    lo, hi = np.minimum(p0, p_end), np.maximum(p0, p_end)
-    disc = a0 * a0 - 2 * j * v0
-    for sign in (-1.0, 1.0):
-        with np.errstate(divide="ignore", invalid="ignore"):
-            root = np.where(j != 0, (-a0 + sign * np.sqrt(np.maximum(disc, 0))) / j,
-                            np.where(a0 != 0, -v0 / a0, -1.0))
-        ok = (root > 0) & (root < dur[:, None]) & (disc >= 0)
-        p = p0 + v0 * root + a0 * root**2 / 2 + j * root**3 / 6
-        lo = np.where(ok, np.minimum(lo, p), lo)
-        hi = np.where(ok, np.maximum(hi, p), hi)
-    return lo, hi
-
-
-def _deviation(traj: Trajectory, p_end: FloatArray, cmds: Sequence[Command], table: _Cmds, ci: np.ndarray
-               ) -> FloatArray:
+def _deviation(traj: Trajectory, mid: FloatArray, p_end: FloatArray, cmds: Sequence[Command], table: _Cmds,
+               ci: np.ndarray) -> FloatArray:
     """Distance of each phase's start, middle and end to the programmed path nearby."""
     from cncc.passes.verify_geometry import distance_to_commands
 
-    d = traj.duration_s[:, None] / 2
-    mid = traj.p0_mm + traj.v0_mm_s * d + traj.a0_mm_s2 * d**2 / 2 + traj.j_mm_s3 * d**3 / 6
     dist = np.zeros(traj.phase_count)
     for pts in (traj.p0_mm, mid, p_end):
         dist = np.maximum(dist, distance_to_commands(pts, ci, cmds, table.motion))

@@ -50,13 +50,12 @@ from cncc.backends.pulses.solve import (
     Segments,
     exact_axis_steps,
     segment,
-    speed_max,
     windows,
 )
 from cncc.backends.pulses.spec import AxisPulseSpec, axis_spec, backlash_offsets_s
 from cncc.diagnostics import DiagnosticSink
 from cncc.ir.machine import Axis, MachineModel
-from cncc.ir.trajectory import Trajectory
+from cncc.ir.trajectory import Trajectory, axis_bounds
 from cncc.source import NO_SPAN, Span
 
 MODES = ("exact", "interp")
@@ -181,13 +180,11 @@ def _exact(traj: Trajectory, specs: tuple[AxisPulseSpec, ...], cols: tuple[int, 
 def _interp(traj: Trajectory, specs: tuple[AxisPulseSpec, ...], cols: tuple[int, ...], post: _Post,
             budget: int, period_s: float) -> Iterator[StepChunk]:
     r = _steps_per_mm(traj, specs, cols)
-    vmax = speed_max(traj.v0_mm_s, traj.a0_mm_s2, traj.j_mm_s3, traj.duration_s[:, None]).max(axis=0)
+    vmax = axis_bounds(traj)[0].max(axis=0)  # arcs included
     per_period = float((r * vmax).sum() * period_s) + 1.0
     k_win = int(min(max(budget / per_period, 1.0), 1 << 20))
     total = period_count(traj, period_s)
-    sub = Trajectory(traj.t0_s, traj.duration_s, traj.p0_mm[:, cols], traj.v0_mm_s[:, cols],
-                     traj.a0_mm_s2[:, cols], traj.j_mm_s3[:, cols], traj.cmd_index, traj.limit,
-                     tuple(traj.axes[i] for i in cols))
+    sub = traj.select_axes(list(cols))
     for k0 in range(0, max(total, 1), k_win):
         k1 = min(k0 + k_win, total)
         raws = interp_window(sub, specs, k0, k1, period_s)

@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from cncc.backends.pulses.solve import F64, I8, I32, I64, RawSteps, poly
+from cncc.backends.pulses.solve import F64, I8, I32, I64, RawSteps
 from cncc.backends.pulses.spec import AxisPulseSpec
 from cncc.ir.trajectory import Trajectory
 
@@ -28,8 +28,8 @@ def period_count(traj: Trajectory, period_s: float) -> int:
 def sample_positions(traj: Trajectory, t_s: F64) -> F64:
     """Commanded positions ``(q, m)`` at times ``t_s`` (clamped to the trajectory)."""
     k = np.clip(np.searchsorted(traj.t0_s, t_s, side="right") - 1, 0, traj.phase_count - 1)
-    tau = np.clip(t_s - traj.t0_s[k], 0.0, traj.duration_s[k])[:, None]
-    return poly(traj.p0_mm[k], traj.v0_mm_s[k], traj.a0_mm_s2[k], traj.j_mm_s3[k], tau)
+    tau = np.clip(t_s - traj.t0_s[k], 0.0, traj.duration_s[k])
+    return traj.states(k, tau)[0]  # exact on arcs too
 
 
 def phase_at(traj: Trajectory, t_s: F64) -> F64:

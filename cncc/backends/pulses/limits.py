@@ -19,10 +19,9 @@ import numpy as np
 import numpy.typing as npt
 
 from cncc import diagnostics as diag
-from cncc.backends.pulses.solve import poly, velocity_roots
 from cncc.backends.pulses.spec import AxisPulseSpec
 from cncc.diagnostics import DiagnosticSink
-from cncc.ir.trajectory import Trajectory
+from cncc.ir.trajectory import Trajectory, position_bounds
 from cncc.source import NO_SPAN, Span
 
 MAX_PER_CODE = 100
@@ -79,17 +78,13 @@ def check_soft_limits(traj: Trajectory, specs: tuple[AxisPulseSpec, ...], cols: 
     """E0703 for every command whose motion leaves an axis' soft-limit range."""
     if traj.phase_count == 0:
         return
-    dur = traj.duration_s
+    if all(spec.soft_min_mm is None and spec.soft_max_mm is None for spec in specs):
+        return
+    box_lo, box_hi = position_bounds(traj)  # exact extremes, arcs included
     for spec, i in zip(specs, cols, strict=True):
         if spec.soft_min_mm is None and spec.soft_max_mm is None:
             continue
-        p0, v0, a0, j = traj.p0_mm[:, i], traj.v0_mm_s[:, i], traj.a0_mm_s2[:, i], traj.j_mm_s3[:, i]
-        r1, r2 = velocity_roots(v0, a0, j, np.zeros_like(dur), dur)
-        cand = [p0, poly(p0, v0, a0, j, dur)]
-        for r in (r1, r2):
-            cand.append(np.where(np.isfinite(r), poly(p0, v0, a0, j, np.nan_to_num(r)), p0))
-        stack = np.stack(cand)
-        lo, hi = stack.min(axis=0), stack.max(axis=0)
+        lo, hi = box_lo[:, i], box_hi[:, i]
         if spec.soft_min_mm is not None:
             bad = np.flatnonzero(lo < spec.soft_min_mm - SOFT_LIMIT_TOL_MM).astype(np.int32)
             rep.emit_each_command(diag.SOFT_LIMIT, spec.name, bad, lo[bad], True,

@@ -141,8 +141,7 @@ def interp_reversals(traj: Trajectory, specs: Sequence[AxisPulseSpec], cols: Seq
     if not sel or traj.phase_count == 0:
         return ReversalPauses.none(key)
     cs = [i for _, i in sel]
-    sub = Trajectory(traj.t0_s, traj.duration_s, traj.p0_mm[:, cs], traj.v0_mm_s[:, cs], traj.a0_mm_s2[:, cs],
-                     traj.j_mm_s3[:, cs], traj.cmd_index, traj.limit, tuple(traj.axes[i] for i in cs))
+    sub = traj.select_axes(cs)
     sub_specs = tuple(spec for spec, _ in sel)
     runs: list[list[tuple[F64, I8, I32]]] = [[] for _ in sel]
     total = period_count(traj, period_s)

@@ -14,6 +14,9 @@ step of one axis (:class:`RawSteps`).  No sampling: each step time is the root o
    counts at its ends, and solves for all crossing times at once: closed form for
    constant-acceleration pieces, safeguarded Newton (bracketed, vectorised) where
    the jerk is non-zero.
+3. Curved phases (arcs, helices on the trajectory's exact geometry) take the same
+   route with their own turning points and boundary crossings, through angles
+   (:mod:`.curved`); their segments are at most a few degrees of sweep.
 """
 
 from __future__ import annotations
@@ -24,9 +27,10 @@ from dataclasses import dataclass
 import numpy as np
 import numpy.typing as npt
 
+from cncc.backends.pulses.curved import MAX_SEGMENT_SWEEP_RAD, curved_step_times, turning_times
 from cncc.backends.pulses.roots import piece_times
 from cncc.backends.pulses.spec import AxisPulseSpec
-from cncc.ir.trajectory import Trajectory
+from cncc.ir.trajectory import Trajectory, axis_bounds
 
 F64 = npt.NDArray[np.float64]
 I64 = npt.NDArray[np.int64]
@@ -109,11 +113,18 @@ def segment(traj: Trajectory, steps_per_mm: F64, budget: int) -> Segments:
     """Cut phases so that no segment holds more than about ``budget`` steps."""
     n = traj.phase_count
     dur = traj.duration_s
-    vmax = speed_max(traj.v0_mm_s, traj.a0_mm_s2, traj.j_mm_s3, dur[:, None])
+    bent = traj.curved
+    vmax = axis_bounds(traj)[0] if bent.any() else speed_max(traj.v0_mm_s, traj.a0_mm_s2, traj.j_mm_s3, dur[:, None])
     est = (vmax * dur[:, None] * steps_per_mm[None, :]).sum(axis=1) + 1.0
     jerky = np.any(traj.j_mm_s3 != 0, axis=1)
     per_seg = np.where(jerky, float(min(budget, JERK_SEGMENT_STEPS)), float(budget))
     nsub = np.clip(np.ceil(est / per_seg), 1, 1 << 30).astype(np.int64)
+    if bent.any() and traj.path is not None:
+        law = traj.path
+        kb = np.flatnonzero(bent)
+        s_end, _, _, _ = law.s_at(kb, dur[kb])
+        sweep = np.abs(law.geometry.kappa[law.seg[kb]] * (s_end - law.s0_mm[kb]))
+        nsub[kb] = np.maximum(nsub[kb], np.ceil(sweep / MAX_SEGMENT_SWEEP_RAD).astype(np.int64))
     phase = np.repeat(np.arange(n, dtype=np.int64), nsub)
     first = np.cumsum(nsub) - nsub
     sub = np.arange(phase.shape[0], dtype=np.int64) - first[phase]
@@ -123,6 +134,9 @@ def segment(traj: Trajectory, steps_per_mm: F64, budget: int) -> Segments:
     k = phase
     tcol = ta[:, None]
     values = poly(traj.p0_mm[k], traj.v0_mm_s[k], traj.a0_mm_s2[k], traj.j_mm_s3[k], tcol)
+    if bent.any():
+        cb = np.flatnonzero(bent[k])
+        values[cb] = traj.states(k[cb], ta[cb])[0]
     values = np.where((sub == 0)[:, None], traj.p0_mm[k], values)
     if n:
         end, _, _ = traj.end_state(n - 1)
@@ -167,6 +181,11 @@ def _pieces(traj: Trajectory, seg: Segments, lo: int, hi: int, i: int, spec: Axi
     a0, jk = traj.a0_mm_s2[ph, i], traj.j_mm_s3[ph, i]
     ta, tb = seg.ta_s[lo:hi], seg.tb_s[lo:hi]
     r1, r2 = velocity_roots(v0, a0, jk, ta, tb)
+    bent = traj.curved[ph]
+    if bent.any():
+        cb = np.flatnonzero(bent)
+        r1[cb] = turning_times(traj, ph[cb], ta[cb], tb[cb], i)
+        r2[cb] = np.nan
     valid = np.stack([np.ones_like(ta, dtype=bool), np.isfinite(r1), np.isfinite(r2)], axis=1)
     pstart = np.stack([ta, r1, r2], axis=1)[valid]
     c = np.nonzero(valid)[0]
@@ -176,6 +195,9 @@ def _pieces(traj: Trajectory, seg: Segments, lo: int, hi: int, i: int, spec: Axi
     is_last[:-1] = c[1:] != c[:-1]
     pend = np.where(is_last, tb[c], np.append(pstart[1:], 0.0))
     ystart = np.where(is_first, seg.value_mm[lo:hi, i][c], poly(p0[c], v0[c], a0[c], jk[c], pstart))
+    if bent.any():
+        inner = np.flatnonzero(bent[c] & ~is_first)
+        ystart[inner] = traj.states(ph[c[inner]], pstart[inner])[0][:, i]
     y_all = np.append(ystart, seg.value_mm[hi, i])
     n_all = spec.motor_steps(y_all)
     dn = np.diff(n_all)
@@ -216,6 +238,14 @@ def exact_axis_steps(traj: Trajectory, seg: Segments, lo: int, hi: int, i: int, 
     d = _distances(spec, counts, direction, pc.na, pc.pa)
     ends = (end_state[0] * dirf, end_state[1] * dirf, end_state[2] * dirf)
     u = piece_times(d, counts, va * dirf, aa * dirf, jj * dirf, length, ends)
+    bent = traj.curved[k]
+    if bent.any():  # arcs: through their angles (curved.py)
+        cb = np.flatnonzero(bent)
+        first = np.cumsum(counts) - counts
+        cc = counts[cb]
+        idx = np.arange(int(cc.sum()), dtype=np.int64) + np.repeat(first[cb] - (np.cumsum(cc) - cc), cc)
+        y = np.repeat(pc.pa, counts)[idx] + d[idx] * np.repeat(dirf, counts)[idx]
+        u[idx] = curved_step_times(traj, k[cb], i, tau_a[cb], tau_e[cb], counts[cb], y)
     u += np.repeat(pc.t_abs, counts)
     return RawSteps(u, np.repeat(direction, counts), np.repeat(pc.phase, counts), pc.t_abs, direction, pc.phase,
                     np.cumsum(counts) - counts)

@@ -154,7 +154,7 @@ def tool_path(rep: TimingReport, cmds: Sequence[Command]) -> tuple[dict[str, Any
     knots = sampling.knot_times(traj)
     kc, _ = sampling.at(traj, knots)
     curved = knots[idx.cmd_cat[np.clip(kc, 0, n_cmds - 1)] != _FEED]
-    t = np.unique(np.concatenate((starts, curved, knots[-1:])))
+    t = np.unique(np.concatenate((starts, curved, sampling.curve_times(traj), knots[-1:])))
     pos = traj.sample(t)[0][:, :3]
     cmd, _ = sampling.at(traj, t)
     cmd = np.clip(cmd, 0, n_cmds - 1)

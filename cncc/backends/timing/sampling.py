@@ -56,3 +56,23 @@ def command_starts(traj: Trajectory) -> tuple[F64, I64]:
     ci = np.asarray(traj.cmd_index, dtype=np.int64)
     first = np.concatenate(([0], np.flatnonzero(ci[1:] != ci[:-1]) + 1))
     return np.asarray(traj.t0_s, dtype=np.float64)[first], ci[first]
+
+
+def curve_times(traj: Trajectory, step_rad: float = 0.05) -> F64:
+    """Times inside the curved phases (arcs, helices, blend arcs) at most ``step_rad`` of
+    sweep apart, for drawing them (their phase knots alone would be long chords)."""
+    import numpy as np
+
+    bent = np.flatnonzero(traj.curved)
+    if bent.size == 0 or traj.path is None:
+        return np.zeros(0)
+    law = traj.path
+    s_end, _, _, _ = law.s_at(bent, traj.duration_s[bent])
+    sweep = np.abs(law.geometry.kappa[law.seg[bent]] * (s_end - law.s0_mm[bent]))
+    count = np.minimum(np.ceil(sweep / step_rad), 100_000).astype(np.int64)
+    owner = np.repeat(np.arange(bent.size), count)
+    first = np.cumsum(count) - count
+    frac = (np.arange(owner.size) - first[owner] + 0.5) / np.maximum(count[owner], 1)
+    # equal shares of time: the sweep is monotone in time within a phase
+    out: F64 = traj.t0_s[bent][owner] + frac * traj.duration_s[bent][owner]
+    return out

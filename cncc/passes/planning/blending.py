@@ -48,7 +48,9 @@ def round_corners(run: PathRun, limits: AxisLimits, machine: MachineModel,
     cos_t = np.clip(np.einsum("ij,ij->i", u_in, u_out), -1.0, 1.0)
     theta = np.arccos(cos_t)  # deflection angle at interior vertices 1..k-1
     tol = run.tol_mm[:-1]
+    straight = run.straight
     ok = (~run.arc_vertex[1:-1]) & (theta > 1e-7) & (theta < np.pi - 1e-3) & (tol > 0)
+    ok &= straight[:-1] & straight[1:]  # native arcs keep their corners (vertex caps)
     ok &= (length[:-1] > 1e-9) & (length[1:] > 1e-9)
     if sharp is not None:
         ok &= ~sharp[1:-1]
@@ -100,7 +102,7 @@ def _rebuild(run: PathRun, pts: FloatArray, u_in: FloatArray, e2: FloatArray, d_
     arcv[1:-1] = run.arc_vertex[1:-1][owner] | ((nb > 0) & (j > 0) & (j < nb))
     origin = np.concatenate([[0], owner + 1, [k]])
     return PathRun(new_pts, run.cmd[src], run.rapid[src], run.feed_mm_s[src], run.tol_mm[src], arcv, run.stop_cmd,
-                   origin)
+                   origin, None if run.geo is None else np.where(end_j == 0, run.geo[src], -1), run.arcs)
 
 
 def _reach_mm(seg: Segments, caps: FloatArray, period_s: float) -> FloatArray:
@@ -137,7 +139,7 @@ def velocity_step_caps(seg: Segments, limits: AxisLimits, period_s: float) -> Fl
     ``F(caps)`` (caps from the windows that ``caps`` imply) is decreasing, so
     ``min(c, F(c))`` is always self-consistent; three rounds climb towards the fixed point.
     """
-    du = np.abs(seg.u[1:] - seg.u[:-1])  # (k-1, 6)
+    du = seg.turn()  # (k-1, 6)
     if du.size == 0:
         return np.zeros(0)
     budget = NORMAL_SHARE * limits.amax_mm_s2 * period_s
@@ -145,12 +147,39 @@ def velocity_step_caps(seg: Segments, limits: AxisLimits, period_s: float) -> Fl
     for _ in range(3):
         new = _caps_from(seg, du, caps, period_s, budget)
         caps = np.minimum(new, _caps_from(seg, du, new, period_s, budget))
+    if seg.geo is not None:
+        caps = np.minimum(caps, curvature_step_caps(seg, limits, period_s))
     return caps
+
+
+CURVATURE_STEP_SHARE = 0.5
+"""Share of ``j_i T`` the centripetal acceleration step at a curvature jump may take where
+the path also turns (the tangential step takes the other half); all of it at tangent joints."""
+
+
+def curvature_step_caps(seg: Segments, limits: AxisLimits, period_s: float) -> FloatArray:
+    """Speed caps at the interior vertices where the curvature jumps (line -> arc, arc ->
+    arc): the centripetal acceleration steps by ``v^2 |p''_in - p''_out|`` per axis, which
+    the controller spreads over one period within :data:`CURVATURE_STEP_SHARE` of
+    ``j_i T`` (the jerk-step rule E0618), shape ``(k - 1,)``."""
+    geo = seg.shape()
+    rows = np.arange(seg.count)
+    _, _, c0, _ = geo.derivatives(rows, np.zeros(seg.count))
+    _, _, c1, _ = geo.derivatives(rows, seg.length)
+    jump = np.abs(c0[1:] - c1[:-1])
+    # a tangent joint has no tangential acceleration step: the whole j T is the centripetal one's
+    tangent = seg.turn().max(axis=1, initial=0.0) < 1e-9
+    share = np.where(tangent, 1.0, CURVATURE_STEP_SHARE)[:, None]
+    budget = share * limits.jmax_mm_s3[None, :] * period_s
+    with np.errstate(divide="ignore"):
+        v2 = np.where(jump > 1e-12, budget / np.maximum(jump, 1e-300), np.inf).min(axis=1)
+    out: FloatArray = np.sqrt(v2)
+    return out
 
 
 def reduce_accel(seg: Segments, limits: AxisLimits, period_s: float) -> FloatArray:
     """Segment path-acceleration caps left after the velocity steps' share."""
-    du = np.abs(seg.u[1:] - seg.u[:-1])
+    du = seg.turn()
     if du.size == 0:
         return seg.acap
     caps = np.minimum(np.minimum(seg.vvert[1:-1], seg.vcap[:-1]), seg.vcap[1:])
@@ -164,6 +193,8 @@ def reduce_accel(seg: Segments, limits: AxisLimits, period_s: float) -> FloatArr
     np.add.at(diff, np.maximum(last, first), -load)
     n_load = np.cumsum(diff, axis=0)[:-1]
     left = np.maximum(limits.amax_mm_s2[None, :] - n_load, 1e-6 * limits.amax_mm_s2[None, :])
+    if seg.a_normal is not None:  # arcs: the centripetal part is orthogonal to the tangential one
+        left = np.maximum(np.sqrt(np.maximum(left**2 - seg.a_normal**2, 0.0)), 1e-6 * limits.amax_mm_s2[None, :])
     au = np.abs(seg.u)
     with np.errstate(divide="ignore"):
         acap = np.where(au > 1e-12, left / np.maximum(au, 1e-300), np.inf).min(axis=1)

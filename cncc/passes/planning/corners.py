@@ -74,12 +74,12 @@ def plan_blended(run: PathRun, machine: MachineModel, limits: AxisLimits,
 def rounded_parts(run: PathRun, stop: np.ndarray | None, machine: MachineModel, limits: AxisLimits,
                   whole: bool = False) -> list[Segments]:
     """The run rounded except at ``stop`` (``(k+1,)`` bool), cut into parts at rest."""
-    from cncc.passes.planning.blending import round_corners, velocity_step_caps
+    from cncc.passes.planning.blending import velocity_step_caps
     from cncc.passes.planning.segments import make_segments, split_at_stops
 
     if stop is not None and not stop.any():
         stop = None
-    seg = make_segments(round_corners(run, limits, machine, stop), limits, machine)
+    seg = make_segments(_rounded(run, limits, machine, stop), limits, machine)
     if seg is None:
         return []
     if seg.count >= 2:
@@ -98,7 +98,7 @@ def candidates(run: PathRun, limits: AxisLimits, machine: MachineModel) -> np.nd
     if k < 2:
         return cand
     base = run.cmd - run.cmd.min()
-    single = np.bincount(base)[base] == 1  # the piece is its whole command (a line)
+    single = (np.bincount(base)[base] == 1) & run.straight  # the piece is its whole command (a line)
     v = 1 + np.flatnonzero((run.cmd[:-1] != run.cmd[1:]) & single[:-1] & single[1:] & ~run.arc_vertex[1:-1])
     if v.size == 0:
         return cand
@@ -165,16 +165,31 @@ def _blend_speeds(run: PathRun, machine: MachineModel, limits: AxisLimits
     """Per run point: the lowest vertex cap of its blend arc with every corner rounded
     (the velocity-step rule on the actual chords), ``inf`` where there is none; and the
     rounded segments with their vertex caps (reused when no rounded corner stops)."""
-    from cncc.passes.planning.blending import round_corners, velocity_step_caps
+    from cncc.passes.planning.blending import velocity_step_caps
     from cncc.passes.planning.segments import make_segments
 
     out = np.full(run.points.shape[0], np.inf)
-    seg = make_segments(round_corners(run, limits, machine), limits, machine)
+    seg = make_segments(_rounded(run, limits, machine), limits, machine)
     if seg is None or seg.count < 2 or seg.vorigin is None:
         return out, None, None
     caps = velocity_step_caps(seg, limits, machine.interpolation_period_s)
     np.minimum.at(out, seg.vorigin[1:-1], caps)
+    if seg.geo is not None:  # native blend arcs: crossed at most at their own speed cap
+        blend = seg.vorigin[:-1] == seg.vorigin[1:]
+        np.minimum.at(out, seg.vorigin[:-1][blend], seg.vcap[blend])
     return out, seg, caps
+
+
+def _rounded(run: PathRun, limits: AxisLimits, machine: MachineModel, sharp: np.ndarray | None = None) -> PathRun:
+    """The run with its corners rounded: one exact blend arc per corner on native runs
+    (-O2, ``fillets.py``), blend chords otherwise (``blending.py``)."""
+    if run.geo is not None:
+        from cncc.passes.planning.fillets import round_native
+
+        return round_native(run, sharp)
+    from cncc.passes.planning.blending import round_corners
+
+    return round_corners(run, limits, machine, sharp)
 
 
 def closed_form_stops(run: PathRun, cand: np.ndarray, limits: AxisLimits, machine: MachineModel,

@@ -1,10 +1,13 @@
-"""Path-coordinate phases -> Trajectory rows (per-axis cubic polynomials).
+"""Path-coordinate phases -> Trajectory rows on the exact segment geometry.
 
 Consumes :class:`Segments` and :class:`Phases` on the run's path coordinate ``s``;
 produces :class:`Rows` (the Trajectory arrays without the time offset).  Phases that
 cross a vertex are split at the exact crossing time (the root of the phase's cubic,
-found by vectorised bisection), so every row lies on one straight segment and its
-per-axis polynomials are ``u_k`` times the path polynomial: exact, not sampled.
+found by vectorised bisection), so every row lies on one segment: its path law
+(segment, ``s`` from the segment's start, speed, acceleration, jerk) with the segment's
+:class:`~cncc.ir.trajectory.Geometry` is the motion, exact, not sampled; the per-axis
+arrays hold the exact state at the row's start (on a line, ``u_k`` times the path
+polynomial is the motion itself).
 """
 
 from __future__ import annotations
@@ -13,7 +16,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from cncc.ir.trajectory import FloatArray, Limit, Trajectory
+from cncc.ir.trajectory import FloatArray, Geometry, Limit, PathLaw, Trajectory
 from cncc.passes.planning.profile import Phases
 from cncc.passes.planning.segments import Segments
 
@@ -28,6 +31,7 @@ class Rows:
     j: FloatArray
     cmd: np.ndarray
     limit: np.ndarray
+    law: PathLaw | None = None  # the path phases (``seg`` indexes ``law.geometry``); None: axis rows
 
     @property
     def duration(self) -> float:
@@ -91,10 +95,16 @@ def path_rows(seg: Segments, ph: Phases) -> Rows:
         k = np.clip(np.searchsorted(seg.s0, s_mid, side="right") - 1, 0, seg.count - 1)
         if bounds is not None:  # rounding may carry a phase a hair past its block's end
             k = np.clip(k, bounds[0][owner], bounds[1][owner])
-    u = seg.u[k]
-    p0 = seg.p0[k] + u * (ph.s0 - seg.s0[k])[:, None]
     limit = np.where(ph.limit == Limit.NONE, seg.vlim[k], ph.limit).astype(np.int8)
-    return Rows(ph.t0, ph.dur, p0, u * ph.v0[:, None], u * ph.a0[:, None], u * ph.j[:, None], seg.cmd[k], limit)
+    s_local = np.clip(ph.s0 - seg.s0[k], 0.0, seg.length[k])
+    law = PathLaw(k.astype(np.int64), s_local, ph.v0, ph.a0, ph.j, seg.shape())
+    if seg.geo is None:
+        u = seg.u[k]
+        p0 = seg.p0[k] + u * s_local[:, None]
+        return Rows(ph.t0, ph.dur, p0, u * ph.v0[:, None], u * ph.a0[:, None], u * ph.j[:, None], seg.cmd[k], limit,
+                    law)
+    p0, v0, a0, j = law.states(np.arange(k.size), np.zeros(k.size))
+    return Rows(ph.t0, ph.dur, p0, v0, a0, j, seg.cmd[k], limit, law)
 
 
 @dataclass
@@ -148,4 +158,34 @@ def assemble(chunks: list[Rows]) -> Trajectory:
         np.concatenate([c.j for c in chunks]),
         np.concatenate([c.cmd for c in chunks]).astype(np.int64),
         np.concatenate([c.limit for c in chunks]).astype(np.int8),
+        path=_joined_law(chunks),
     )
+
+
+def _joined_law(chunks: list[Rows]) -> PathLaw | None:
+    """One path law over the chunks (axis-row chunks get segment ``-1``); None without path phases."""
+    if all(c.law is None for c in chunks):
+        return None
+    m = chunks[0].p0.shape[1]
+    geos: list[Geometry] = []
+    seg, s0, v, a, j = [], [], [], [], []
+    base = 0
+    for c in chunks:
+        n = c.t0.size
+        if c.law is None:
+            seg.append(np.full(n, -1, np.int64))
+            zero = np.zeros(n)
+            s0.append(zero)
+            v.append(zero)
+            a.append(zero)
+            j.append(zero)
+            continue
+        seg.append(c.law.seg + base)
+        s0.append(c.law.s0_mm)
+        v.append(c.law.v_mm_s)
+        a.append(c.law.a_mm_s2)
+        j.append(c.law.j_mm_s3)
+        geos.append(c.law.geometry)
+        base += c.law.geometry.count
+    return PathLaw(np.concatenate(seg), np.concatenate(s0), np.concatenate(v), np.concatenate(a), np.concatenate(j),
+                   Geometry.concat(geos, m))

@@ -7,9 +7,12 @@ each move at their own rate).  Runs are cut where a command ends in exact stop
 (G09/G61/G60, ``rapid_ends_in_stop``), where a non-motion command forces a stop
 (:func:`cncc.passes.blend.forces_stop`) and around independent rapids.
 
-Arcs become chords whose sagitta is within ``min(arc_tolerance_mm, blend tolerance)``;
-for the jerk-limited levels the chords are also short enough that one chord takes
-about one interpolation period at the centripetal speed (see ``blending.py``).
+At -O2 (:data:`NATIVE_ARCS`) an arc or helix is **one piece** whose exact shape is a row
+of :class:`cncc.ir.trajectory.Geometry` (``PathRun.geo`` / ``PathRun.arcs``): the planner
+plans it on its path coordinate with centripetal limits (``segments.py``).  At the other
+levels arcs become chords whose sagitta is within ``min(arc_tolerance_mm, blend
+tolerance)``; for -O3 the chords are also short enough that one chord takes about one
+interpolation period at the centripetal speed (see ``blending.py``).
 """
 
 from __future__ import annotations
@@ -24,7 +27,7 @@ from cncc import diagnostics as dg
 from cncc.diagnostics import DiagnosticSink
 from cncc.ir.commands import Arc, Command, Linear, PathMode, Rapid
 from cncc.ir.machine import MachineModel, RapidMode
-from cncc.ir.trajectory import FloatArray
+from cncc.ir.trajectory import FloatArray, Geometry
 from cncc.passes.blend import forces_stop
 from cncc.passes.planning.limits import AxisLimits
 
@@ -37,6 +40,9 @@ CHORD_SAFETY = 0.8
 
 NORMAL_SHARE = 0.5
 """Share of each axis' acceleration that velocity steps at chord vertices may use."""
+
+NATIVE_ARCS = True
+"""-O2 plans arcs and helices as one piece on their exact geometry (False: chords, as -O1/-O3)."""
 
 
 @dataclass
@@ -51,6 +57,16 @@ class PathRun:
     arc_vertex: np.ndarray  # (k+1,) bool, vertex strictly inside one arc
     stop_cmd: int = -1  # command whose stop ends the run (for reports)
     origin: np.ndarray | None = None  # (k+1,) index of the unrounded point each point comes from
+    geo: np.ndarray | None = None  # (k,) int64, row of ``arcs`` of each arc piece, -1 for straight pieces
+    arcs: Geometry | None = None  # exact shape of the arc pieces
+
+    @property
+    def straight(self) -> np.ndarray:
+        """``(k,)`` bool: pieces that are straight lines (the others are native arcs)."""
+        if self.geo is None:
+            return np.ones(self.cmd.size, bool)
+        out: np.ndarray = self.geo < 0
+        return out
 
 
 @dataclass
@@ -74,6 +90,9 @@ class _Builder:
     feed: list[float] = field(default_factory=list)
     tol: list[float] = field(default_factory=list)
     arcv: list[bool] = field(default_factory=list)  # the piece's end point is inside an arc
+    geo: list[int] = field(default_factory=list)  # row of ``arcs`` (native arc pieces) or -1
+    arcs: list[Geometry] = field(default_factory=list)
+    native: bool = False  # -O2: the run keeps ``geo`` even without arcs (its corners become blend arcs)
 
     def add_line(self, start: tuple[float, ...], end: tuple[float, ...], cmd: int, rapid: bool, feed: float,
                  tol: float) -> None:
@@ -85,6 +104,13 @@ class _Builder:
         self.feed.append(feed)
         self.tol.append(tol)
         self.arcv.append(False)
+        self.geo.append(-1)
+
+    def add_native_arc(self, start: tuple[float, ...], end: tuple[float, ...], shape: Geometry, cmd: int,
+                       feed: float, tol: float) -> None:
+        self.add_line(start, end, cmd, False, feed, tol)
+        self.geo[-1] = len(self.arcs)
+        self.arcs.append(shape)
 
     def add_arc(self, start: tuple[float, ...], pts: FloatArray, cmd: int, feed: float, tol: float) -> None:
         if self.start is None:
@@ -96,6 +122,7 @@ class _Builder:
         self.feed.extend([feed] * q)
         self.tol.extend([tol] * q)
         self.arcv.extend([True] * (q - 1) + [False])
+        self.geo.extend([-1] * q)
 
     def finish(self) -> PathRun | None:
         if self.start is None:
@@ -103,15 +130,18 @@ class _Builder:
         pts = np.array([self.start, *self.points], dtype=float)
         arcv = np.array([False, *self.arcv], dtype=bool)
         arcv[-1] = False
+        geo = np.array(self.geo, dtype=np.int64) if self.arcs or self.native else None
+        arcs = Geometry.concat(self.arcs, pts.shape[1]) if self.arcs or self.native else None
         return PathRun(pts, np.array(self.cmd, dtype=np.int64), np.array(self.rapid, dtype=bool),
-                       np.array(self.feed, dtype=float), np.array(self.tol, dtype=float), arcv)
+                       np.array(self.feed, dtype=float), np.array(self.tol, dtype=float), arcv, geo=geo, arcs=arcs)
 
 
 def build_runs(cmds: Sequence[Command], machine: MachineModel, limits: AxisLimits, level: int,
                sink: DiagnosticSink) -> list[Run]:
     """Split the command list into runs (see the module docstring)."""
     runs: list[Run] = []
-    b = _Builder()
+    native = level == 2 and NATIVE_ARCS
+    b = _Builder(native=native)
     warned: set[str] = set()
 
     def close() -> None:
@@ -119,7 +149,7 @@ def build_runs(cmds: Sequence[Command], machine: MachineModel, limits: AxisLimit
         run = b.finish()
         if run is not None:
             runs.append(run)
-        b = _Builder()
+        b = _Builder(native=native)
 
     for index, cmd in enumerate(cmds):
         match cmd:
@@ -150,6 +180,11 @@ def _add_motion(b: _Builder, cmd: Rapid | Linear | Arc, index: int, machine: Mac
     if isinstance(cmd, Linear):
         b.add_line(cmd.start, cmd.end, index, False, feed, tol_mm)
         return
+    if level == 2 and NATIVE_ARCS:
+        shape = arc_geometry(cmd)
+        if shape is not None:
+            b.add_native_arc(cmd.start, cmd.end, shape, index, feed, tol_mm)
+            return
     chord_max = _arc_chord_max(cmd, feed, machine, limits) if level >= 2 else math.inf
     sag = min(machine.arc_tolerance_mm, tol_mm) if tol_mm > 0 else machine.arc_tolerance_mm
     b.add_arc(cmd.start, arc_points(cmd, sag, chord_max)[1:], index, feed, tol_mm)
@@ -196,6 +231,78 @@ def _arc_chord_max(cmd: Arc, feed_mm_s: float, machine: MachineModel, limits: Ax
     # chords for the same caps (equal to v T at the centripetal speed)
     spaced = CHORD_SAFETY * NORMAL_SHARE * a_plane * t * max(radius, 1e-9) / max(v, 1e-9)
     return max(1.02 * v * t + 2.2 * t * t * a_plane, spaced, 1e-4)
+
+
+def _sweep(cmd: Arc) -> tuple[float, float, float, float]:
+    """Start radius, end radius, start angle and signed sweep (rad) of the arc in its plane."""
+    f, s = cmd.plane.first, cmd.plane.second
+    cf, cs = cmd.center[f], cmd.center[s]
+    start, end = cmd.start, cmd.end
+    r0 = math.hypot(start[f] - cf, start[s] - cs)
+    r1 = math.hypot(end[f] - cf, end[s] - cs)
+    a0 = math.atan2(start[s] - cs, start[f] - cf)
+    a1 = math.atan2(end[s] - cs, end[f] - cf)
+    turns = cmd.turns if cmd.turns != 0 else 1
+    if turns > 0:
+        sweep = (a1 - a0) % (2 * math.pi)
+        sweep = sweep if sweep > 1e-9 else 2 * math.pi
+        sweep += 2 * math.pi * (turns - 1)
+    else:
+        sweep = -((a0 - a1) % (2 * math.pi))
+        sweep = sweep if sweep < -1e-9 else -2 * math.pi
+        sweep -= 2 * math.pi * (-turns - 1)
+    return r0, r1, a0, sweep
+
+
+def arc_geometry(cmd: Arc) -> Geometry | None:
+    """The exact shape of an arc or helix as one :class:`Geometry` row (None: degenerate).
+
+    ``s`` runs over the helix length ``hypot(sweep * r, axial)``; the radius changes
+    linearly from the start's to the end's (``dr``), so the end point is exact."""
+    f, s = cmd.plane.first, cmd.plane.second
+    r0, r1, a0, sweep = _sweep(cmd)
+    if max(r0, r1) < 1e-9:
+        return None
+    start = np.array(cmd.start, float)
+    end = np.array(cmd.end, float)
+    axial = end - start
+    axial[[f, s]] = 0.0
+    c = start.copy()
+    c[f], c[s] = cmd.center[f], cmd.center[s]
+    circle = _exact_circle(start[[f, s]], end[[f, s]], np.array([c[f], c[s]]), sweep)
+    if circle is not None:  # a circle through both ends: |p'| = 1, no radius change
+        (c[f], c[s]), r0 = circle
+        r1 = r0
+        a0 = math.atan2(start[s] - c[s], start[f] - c[f])
+    length = math.hypot(abs(sweep) * (r0 + r1) / 2, float(np.linalg.norm(axial)))
+    if length < 1e-9:
+        return None
+    e1, e2 = np.zeros(6), np.zeros(6)
+    e1[f], e2[s] = 1.0, 1.0
+    one = np.ones(1)
+    return Geometry(c[None, :], e1[None, :], e2[None, :], (axial / length)[None, :], one * r0,
+                    one * ((r1 - r0) / length), one * a0, one * (sweep / length), one * length)
+
+
+def _exact_circle(p0: FloatArray, p1: FloatArray, centre: FloatArray, sweep: float
+                  ) -> tuple[tuple[float, float], float] | None:
+    """Centre and radius of the circle through ``p0`` and ``p1`` (in the plane) that sweeps
+    ``sweep`` between them, next to the programmed ``centre`` (whose two radii may differ a
+    little, within arc-check's tolerance); None where the ends already share the radius or
+    the chord is too short to tell."""
+    if abs(float(np.linalg.norm(p0 - centre)) - float(np.linalg.norm(p1 - centre))) < 1e-12:
+        return None
+    chord = p1 - p0
+    half = float(np.linalg.norm(chord)) / 2
+    sin_half = abs(math.sin(sweep / 2))
+    if half < 1e-9 or sin_half < 1e-6:
+        return None
+    radius = half / sin_half
+    mid = (p0 + p1) / 2
+    normal = np.array([-chord[1], chord[0]]) / (2 * half)
+    h = math.sqrt(max(radius * radius - half * half, 0.0))
+    best = min((mid + h * normal, mid - h * normal), key=lambda c: float(np.linalg.norm(c - centre)))
+    return (float(best[0]), float(best[1])), radius
 
 
 def arc_points(cmd: Arc, sag_mm: float, chord_max_mm: float = math.inf) -> FloatArray:

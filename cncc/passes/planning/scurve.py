@@ -208,10 +208,13 @@ def _ramp_phases(v0: FloatArray, v1: FloatArray, a_max: FloatArray, j_max: Float
 def step_accel_caps(seg: Segments, jmax_mm_s3: FloatArray, period_s: float) -> FloatArray:
     """Path acceleration at each interior vertex whose per-axis step ``a |du_i|`` the
     controller spreads over one period within the jerk limit: ``min_i j_i T / |du_i|``."""
-    du = np.abs(seg.u[1:] - seg.u[:-1])
+    du = seg.turn()
+    budget = jmax_mm_s3[None, :] * period_s
+    if seg.a_normal is not None:  # next to an arc the centripetal step takes its share (blending.py)
+        curved = np.asarray(seg.a_normal.any(axis=1), bool)
+        budget = np.where((curved[1:] | curved[:-1])[:, None], 0.5 * budget, budget)
     with np.errstate(divide="ignore"):
-        out: FloatArray = np.where(du > 1e-12, jmax_mm_s3[None, :] * period_s / np.maximum(du, 1e-300),
-                                   np.inf).min(axis=1, initial=np.inf)
+        out: FloatArray = np.where(du > 1e-12, budget / np.maximum(du, 1e-300), np.inf).min(axis=1, initial=np.inf)
     return out
 
 

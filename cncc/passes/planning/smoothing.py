@@ -59,7 +59,7 @@ def snap_short_moves(run: PathRun) -> PathRun:
         return run
     length = np.linalg.norm(np.diff(pts, axis=0), axis=1)
     tol = run.tol_mm
-    short = (length < SHORT_TOL * tol) & (tol > 0) & ~run.rapid
+    short = (length < SHORT_TOL * tol) & (tol > 0) & ~run.rapid & run.straight
     # point i (1..k-1) may move when both its pieces are short, alike and not inside an arc
     movable = np.zeros(k + 1, bool)
     movable[1:-1] = (short[:-1] & short[1:] & (run.feed_mm_s[:-1] == run.feed_mm_s[1:])
