@@ -140,6 +140,8 @@ CYCLE_BACK_BORE_SWAPPED = _define("W0418", W, "a back bore with R above Z: the t
 CYCLE_RETURN_IN_HOLE = _define("E0419", E, "the level a cycle returns to is inside the hole (initial level too low)")
 LATHE_PROFILE = _define("E0480", E, "a lathe cycle's profile (G70-G72 Q subroutine) cannot be cut: not monotonic, "
                         "a bad arc or corner, or no progress")
+LATHE_GOUGE = _define("E0463", E, "a lathe cycle (G70-G72) refused: one of its moves would go into the finished "
+                      "part (nothing of the cycle runs)")
 LATHE_CYCLE_WORDS = _define("E0481", E, "a lathe cycle (G70-G72, G76) word is missing or out of range")
 LATHE_CYCLE_STATE = _define("E0482", E, "a lathe cycle in a state it cannot run in (not G18, cutter compensation on)")
 

@@ -156,11 +156,11 @@ def test_g7x_moves_are_the_same_on_the_fast_path(monkeypatch: pytest.MonkeyPatch
 
 def test_g70_refused_when_its_return_rapid_would_clip_the_part() -> None:
     # A convex arc at the end of a facing profile: the straight rapid from its end back to the start point
-    # passes under the arc's bulge.  cncc refuses the cycle (E0480) and runs none of its moves.
+    # passes under the arc's bulge.  cncc refuses the cycle (E0463) and runs none of its moves.
     text = ("G21 G18 F150\no100 sub\nG0 X-3.1004 Z2.772\nG1 X-6.3252 Z3.7502\nG2 X-10.4226 Z4.6556 R3.2683\n"
             "o100 endsub\nG0 X-1.1318 Z5.669\nG70 Q100 D0.3125 E0.0968 P3\nM2\n")
     r = compile_text(text, dialect="linuxcnc", emit="canon")
-    assert not r.ok and "E0480" in codes(r)
+    assert not r.ok and "E0463" in codes(r)
     lines, _ = canon(text, "linuxcnc")
     assert len(calls(lines, "STRAIGHT_TRAVERSE", "STRAIGHT_FEED", "ARC_FEED")) == 1  # the G0 before it
 

@@ -10,9 +10,12 @@ Written from LinuxCNC's G-code manual and black-box runs of rs274 2.9 (no LinuxC
 - the pocket stage (G7x and G7x.2) follows the profile; where it turns down from a peak it cuts
   each level between the peak (included) and the next valley (excluded) from the falling wall
   to where the profile reaches the level again, feeding back to the wall after each pass;
-- G7x.1 ends with a pass along the profile with its pockets bridged (each piece's part above
-  the highest point before it, as rs274 prints it: a feed to the part's start, then its end);
-- every roughing cycle ends with a feed from the profile's end across to the start height.
+- G7x.1 cuts only the pocket the profile may start with and ends with a pass along the profile
+  with its other pockets bridged (each piece's part above the highest point before it, as rs274
+  prints it: a feed to the part's start, then its end); G7x.2 leaves that first pocket alone;
+- a roughing cycle ends with a feed from the profile's end across to the start height (none when
+  the end lies above it);
+- a start point below the profile's start cuts nothing: a feed along the entry line and the profile.
 """
 
 from __future__ import annotations

@@ -27,7 +27,11 @@ ZX = tuple[float, float]  # (z, x) in program units
 
 
 class ProfileError(Exception):
-    """The profile cannot be cut (rs274's text)."""
+    """The profile cannot be cut (rs274's text); ``code``: the diagnostic."""
+
+    def __init__(self, message: str, code: str = "E0480") -> None:
+        super().__init__(message)
+        self.code = code
 
 
 def capture(ex: LinuxcncExecutor, fr: Frame, label: str, span: Span) -> list[tuple[Word, ...]] | None:

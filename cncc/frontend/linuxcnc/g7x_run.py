@@ -82,7 +82,7 @@ def _plan(ex: LinuxcncExecutor, blocks: list[tuple[Word, ...]], start: ZX, words
     if above and (bad := first_gouge(ps, s, out[1:])) is not None:  # (the first rapid is the block's own)
         z, x = f.back(bad[0])
         raise ProfileError(f"G{cycle}: a {bad[1]} move of the cycle would cut into the profile at X{x:.4f} "
-                           f"Z{z:.4f}; nothing is run")
+                           f"Z{z:.4f}; nothing is run", dg.LATHE_GOUGE)
     return out, f
 
 
@@ -114,7 +114,10 @@ def cut(ex: LinuxcncExecutor, fr: Frame, span: Span, words: tuple[Word, ...], cy
         return
     try:
         moves, f = _plan(ex, blocks, start, words, cycle, sub)
-    except (ProfileError, ValueError) as exc:
+    except ProfileError as exc:
+        ex.fail(exc.code, span, str(exc))
+        return
+    except ValueError as exc:
         ex.fail(dg.LATHE_PROFILE, span, str(exc))
         return
     _Emit(ex, span, f, feed, ctx).run(moves, cycle)

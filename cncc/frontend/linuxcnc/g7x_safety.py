@@ -3,7 +3,7 @@
 In the cycle's frame the profile is a function u(w) (it is monotonic along w) and the stock lies
 above it.  Every move of the path, rapids included, is sampled along its length; a sample below
 the profile (more than :data:`TOLERANCE`) means the path would cut into the finished part, and the
-cycle is refused (E0480) rather than run.  rs274 2.9 has no such check.
+cycle is refused (E0463) rather than run.  rs274 2.9 has no such check.
 """
 
 from __future__ import annotations
