@@ -140,6 +140,8 @@ def _value(raw: str, spec: Mapping[str, Any]) -> Any:
     if not _NUMBER.match(raw.strip()):
         return None
     v = float(raw)
+    if not math.isfinite(v):
+        return None
     if kind == "count":
         v = float(int(v))
     lo, hi = float(spec.get("min", -math.inf)), float(spec.get("max", math.inf))

@@ -424,7 +424,7 @@ class _State:
                     return
                 start = x
             yield from self._move_endpoint_and_flush(c, start)
-            self.endpoint = (cx, cy) if front is None or front.center is None else start  # as rs274 2.9
+            self.endpoint = start  # rs274's dequeue: the end of the last move it flushed
         elif beta > SMALL:  # outside corner: an arc about the programmed corner
             yield from self._corner_arc(c, here, mid, (cx, cy), (opx, opy), left)
             start = self.endpoint = mid

@@ -47,6 +47,12 @@ CASES: dict[str, str | tuple[str, str] | tuple[str, str, dict[str, str]]] = {
     "r_arc_just_short": "G21 F100\nG2 X20 Y0 R9.99875\nM2\n",
     "r_arc_too_short": "G21 F100\nG2 X20 Y0 R9.9985\nM2\n",
     "r_arc_just_short_inch": "G20 F10\nG2 X20 Y0 R9.99996\nM2\n",
+    "m7_m8_one_block": "G21\nM7 M8\nG0 X1\nM2\n",  # Two m codes used from same modal group
+    "g90_1_missing_j": "G21 F100\nG90.1\nG0 X1\nG2 X3 Y0 I2\nM2\n",
+    "g55_with_g41_1": "G21 F100\nG0 X-9\nG41.1 D1 G55\nG1 X10\nG40\nM2\n",
+    "m2_mist_only": "G21\nM7\nG0 X1\nM2\n",
+    "g53_in_comp": "G21 F100\nG0 X-9\nG41.1 D1 G1 X0\nG53 G0 X0\nG40\nM2\n",
+    "m72_coolant": "G21\nM8\nM70\nM9\nM7\nG18\nM72\nG0 X1\nM2\n",
     # not fixed yet (OPEN_CASES in test_cases.py)
     "computed_o_number": "G21\n#<n>=100\no100 sub\nG0 X7\no100 endsub\no#<n> call\nM2\n",
     "bracketed_o_number": "G21\no100 sub\nG0 X7\no100 endsub\nO[50*2] call\nM2\n",

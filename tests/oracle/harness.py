@@ -54,6 +54,8 @@ MESSAGES: dict[str, str] = {
     "'O.... endsub' or 'O.... return' must follow 'O.... sub' subroutine definition": "E0386",
     "Bug:  Reached convert_stop() from M99 as subprogram return": "E0386",
     "Cannot feed with zero spindle speed in feed per rev mode": "E0260",
+    "Two m codes used from same modal group": "E0203",
+    "Two g codes used from same modal group": "E0203",
     "I word missing in absolute center arc": "E0250",
     "J word missing in absolute center arc": "E0250",
     "K word missing in absolute center arc": "E0250",

@@ -33,6 +33,7 @@ from cncc.ir import CallBoundary, Command
 
 if TYPE_CHECKING:
     from cncc.backends.gcode.emit import GcodeEmitter
+    from cncc.backends.gcode.writer import BlockWriter
 
 _MARK = "\x00call"
 NO_INCREMENTAL = "\x00absolute only\n"  # a block inside a call that has no incremental form
@@ -47,7 +48,7 @@ class Run:
     """One run of a called program: its lines, with the runs it made in place."""
 
     key: str
-    index: int  # into GcodeEmitter.calls
+    index: int  # into BlockWriter.calls
     parts: list[tuple[str, str] | Run] = field(default_factory=list)  # (absolute, incremental) lines
     closed: bool = False
 
@@ -236,7 +237,7 @@ class Writer:
             yield from (head, body, *sections, tail)
 
 
-def incremental_form(em: GcodeEmitter, words: list[str], comment: str) -> str:
+def incremental_form(em: BlockWriter, words: list[str], comment: str) -> str:
     """The block written with incremental axis words (a poisoned line when it has none)."""
     pair, em.inc_words = em.inc_words, None
     poison, em.inc_poison = em.inc_poison or em.sync_poison, False
@@ -252,7 +253,7 @@ def incremental_form(em: GcodeEmitter, words: list[str], comment: str) -> str:
         em.in_alt = False
 
 
-def call_marker(em: GcodeEmitter, cmd: CallBoundary) -> str:
+def call_marker(em: BlockWriter, cmd: CallBoundary) -> str:
     """A marker line (not program text) where a called program's run begins or ends."""
     begin = cmd.begin
     if begin:
