@@ -199,8 +199,13 @@ def _all_zero(buf: npt.NDArray[np.uint8], first: IntArray, length: IntArray) -> 
     return out
 
 
+class LineTooLong(ValueError):
+    """A line longer than a scan chunk (MAX_CHUNK bytes): no plain block, and not for this scanner."""
+
+
 def chunks(data: bytes, size: int = 1 << 20) -> list[tuple[int, int]]:
-    """``(start, stop)`` of chunks of about ``size`` bytes that end at line ends."""
+    """``(start, stop)`` of chunks of about ``size`` bytes that end at line ends (raises
+    :class:`LineTooLong` for a line longer than MAX_CHUNK)."""
     size = min(size, MAX_CHUNK)
     out: list[tuple[int, int]] = []
     pos, n = 0, len(data)
@@ -209,8 +214,8 @@ def chunks(data: bytes, size: int = 1 << 20) -> list[tuple[int, int]]:
         if stop <= pos:  # a line longer than a chunk: up to its end
             nl = data.find(b"\n", pos + size)
             stop = n if nl < 0 else nl + 1
-            if stop - pos > MAX_CHUNK:  # pragma: no cover - the caller refuses such inputs
-                raise ValueError("line longer than a scan chunk")
+            if stop - pos > MAX_CHUNK:
+                raise LineTooLong(f"a line of more than {MAX_CHUNK} bytes at byte {pos}")
         out.append((pos, stop))
         pos = stop
     return out

@@ -60,7 +60,8 @@ CHUNK_BYTES = 1 << 20  # scanned at once (tests make it small to cross chunk bou
 
 
 class NotStraight(Exception):
-    """The program has macro syntax, calls or jumps after all (found before that chunk ran)."""
+    """The program is not for this checker after all: it has macro syntax, calls or jumps (found
+    before that chunk ran), or a line longer than a scan chunk (found before anything ran)."""
 
 
 @dataclass(frozen=True, slots=True)
@@ -157,7 +158,10 @@ class _Walk:
         text = self.src.text
         ascii_only = text.isascii()
         data = text.encode("ascii") if ascii_only else text.encode("utf-8", "surrogatepass")
-        bounds = ps.chunks(data, chunk_bytes)
+        try:
+            bounds = ps.chunks(data, chunk_bytes)
+        except ps.LineTooLong:
+            raise NotStraight from None
         total_lines = data.count(b"\n") + 1
         char_base = 0  # character offset of the chunk's first byte
         line_base = 0  # 0-based line number of the chunk's first line

@@ -396,3 +396,15 @@ def test_small_programs_skip_the_checker(tmp_path: Path, monkeypatch: pytest.Mon
     big.write_text(cam_file(5000, False))
     assert len(big.read_text()) >= 1 << 16
     assert len(check(big, "syntec", monkeypatch)[2]) == 1
+
+
+def test_a_line_longer_than_a_scan_chunk_leaves_it_to_the_front_end(tmp_path: Path,
+                                                                     monkeypatch: pytest.MonkeyPatch) -> None:
+    lines = program(6, n=300).splitlines()
+    lines.insert(100, "G1 X1 (" + "y" * (plainscan.MAX_CHUNK + 10) + ")")
+    path = tmp_path / "long.nc"
+    path.write_text("\n".join(lines) + "\n")
+    walks = assert_same(path, "syntec", monkeypatch)
+    assert len(walks) == 1 and walks[0].vectorised == 0
+    diags, _, _ = check(path, "syntec", monkeypatch)
+    assert dg.LINE_TOO_LONG in [d[0] for d in diags]
