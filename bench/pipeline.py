@@ -123,6 +123,11 @@ def run(argv: list[str], cwd: str = ROOT) -> tuple[float, float, int]:
 
 
 def main() -> int:
+    if sys.argv[1:2] == ["--write"]:  # --write KIND LINES PATH (the generator, in a child process)
+        kind, n, path = sys.argv[2], int(sys.argv[3]), sys.argv[4]
+        with open(path, "w") as f:
+            f.write(program(kind, n))
+        return 0
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--lines", default="100000,1000000")
     ap.add_argument("--kinds", default="plain,arcs,transformed")
@@ -145,8 +150,9 @@ def main() -> int:
         for n in sizes:
             for kind in kinds:
                 path = os.path.join(tmp, f"{kind}-{n}.nc")
-                with open(path, "w") as f:
-                    f.write(program(kind, n))
+                # written by a child: a child's peak RSS starts from its parent's at fork (Linux keeps
+                # the high-water mark across exec), so this process must stay small
+                subprocess.run([sys.executable, __file__, "--write", kind, str(n), path], check=True)
                 base_gp, rss_gp, _code = run([sys.executable, "-c", GCODEPARSER, path])
                 base_pg, rss_pg, _code = run([sys.executable, "-c", PYGCODE, path])
                 label = f"{kind} {n:,}"
