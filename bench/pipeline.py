@@ -1,7 +1,7 @@
 """Whole-pipeline throughput: the commands users run, as whole processes.
 
     python bench/pipeline.py [--lines 100000,1000000] [--kinds plain,arcs,transformed]
-                             [--commands syntax,canon,grbl,timing0]
+                             [--commands syntax,canon,grbl,timing0] [--before TREE]
 
 For each generated CAM file (a plain G1 raster, G1 with 10 % G2/G3 arcs whose centres
 are consistent, and a program under G68 rotation + G51 scaling + G41 cutter comp)
@@ -19,6 +19,9 @@ and, as baselines in the same run, ``gcodeparser`` (tokenising only) and ``pygco
 faster).  Goals (issue 15, plain 1M-line file): -fsyntax-only >= 4x gcodeparser,
 canon and grbl >= 2x, timing -O0 >= 1x, peak RSS < 300 MB each; the transformed
 program within 2x of the plain one.
+
+``--before TREE`` also runs every cncc command from another checkout (e.g. an export of
+``main``) on the same file in the same run and prints the before/after CPU ratio.
 """
 
 from __future__ import annotations
@@ -106,9 +109,10 @@ def program(kind: str, n_lines: int) -> str:
     return "\n".join(head + pre + body + post + tail) + "\n"
 
 
-def run(argv: list[str]) -> tuple[float, float, int]:
+def run(argv: list[str], cwd: str = ROOT) -> tuple[float, float, int]:
     """CPU seconds (user + sys), peak RSS in MB and exit status of one child process."""
-    proc = subprocess.Popen(argv, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, cwd=ROOT)
+    env = dict(os.environ, PYTHONPATH=cwd)
+    proc = subprocess.Popen(argv, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, cwd=cwd, env=env)
     assert proc.stderr is not None
     err = proc.stderr.read()
     _, status, ru = os.wait4(proc.pid, 0)
@@ -119,12 +123,19 @@ def run(argv: list[str]) -> tuple[float, float, int]:
 
 
 def main() -> int:
+    if sys.argv[1:2] == ["--write"]:  # --write KIND LINES PATH (the generator, in a child process)
+        kind, n, path = sys.argv[2], int(sys.argv[3]), sys.argv[4]
+        with open(path, "w") as f:
+            f.write(program(kind, n))
+        return 0
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--lines", default="100000,1000000")
     ap.add_argument("--kinds", default="plain,arcs,transformed")
     ap.add_argument("--commands", default=",".join(COMMANDS))
     ap.add_argument("--tools", default=None, help="tool table for the comp program (default: a generated one)")
+    ap.add_argument("--before", default=None, help="another cncc tree to run the same commands from (before/after)")
     args = ap.parse_args()
+    before = os.path.abspath(args.before) if args.before else None
     sizes = [int(s) for s in args.lines.split(",") if s]
     kinds = [k for k in args.kinds.split(",") if k]
     commands = [c for c in args.commands.split(",") if c]
@@ -139,8 +150,9 @@ def main() -> int:
         for n in sizes:
             for kind in kinds:
                 path = os.path.join(tmp, f"{kind}-{n}.nc")
-                with open(path, "w") as f:
-                    f.write(program(kind, n))
+                # written by a child: a child's peak RSS starts from its parent's at fork (Linux keeps
+                # the high-water mark across exec), so this process must stay small
+                subprocess.run([sys.executable, __file__, "--write", kind, str(n), path], check=True)
                 base_gp, rss_gp, _code = run([sys.executable, "-c", GCODEPARSER, path])
                 base_pg, rss_pg, _code = run([sys.executable, "-c", PYGCODE, path])
                 label = f"{kind} {n:,}"
@@ -154,6 +166,11 @@ def main() -> int:
                     rel = ""
                     if kind == "transformed" and (n, name) in plain_cpu:
                         rel = f"  ({cpu / plain_cpu[(n, name)]:.2f}x plain)"
+                    if before is not None:
+                        old_cpu, old_rss, old_code = run([*cncc, *extra, *COMMANDS[name], path], cwd=before)
+                        print(f"{label:>22} {name + ' before':>19} {old_cpu:8.2f} {old_rss:8.0f} {old_code:>4} "
+                              f"{base_gp / old_cpu:14.2f}x {base_pg / old_cpu:10.2f}x", flush=True)
+                        rel += f"  ({old_cpu / cpu:.2f}x faster than before)"
                     print(f"{label:>22} {name:>12} {cpu:8.2f} {rss:8.0f} {code:>4} "
                           f"{base_gp / cpu:14.2f}x {base_pg / cpu:10.2f}x{rel}", flush=True)
     return 0

@@ -57,7 +57,11 @@ def batch_text(b: MoveBatch, feed_in_program_units: bool) -> str | None:
 def _pos(cols: list[np.ndarray[Any, Any]]) -> list[Matrix] | None:
     out: list[Matrix] = []
     for c in cols:
-        m = fixed(c, 4)
+        if len(c) > 1 and bool((c == c[0]).all()) and not bool(np.signbit(c).any() != np.signbit(c[0])):
+            one = fixed(c[:1], 4)  # a column of one value (the rotary axes, a constant Z): formatted once
+            m = None if one is None else np.broadcast_to(one, (len(c), one.shape[1]))
+        else:
+            m = fixed(c, 4)
         if m is None:
             return None
         out.append(m)

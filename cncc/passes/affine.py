@@ -27,7 +27,7 @@ the cutter-compensation side in the frame's plane.
 from __future__ import annotations
 
 from collections.abc import Iterable, Iterator
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from typing import Any, ClassVar
 
 from cncc import diagnostics as dg
@@ -100,6 +100,23 @@ def flip_side(side: CompSide) -> CompSide:
 _MOTIONS = (Rapid, Linear, Arc)
 
 
+@dataclass(slots=True)
+class _Through:
+    """The transform passes' run state: the actual end of the previous motion (program + offsets),
+    and the frame and end of the last motion passed through unchanged (``last`` not yet made)."""
+
+    last: Vec6 | None = None
+    frame: Frame | None = None
+    end: Vec6 = ZERO6
+    cache: dict[int, tuple[Frame, Affine | None, Frame]] = field(default_factory=dict)
+
+    def leave(self) -> None:
+        """End the pass-through: make ``last``."""
+        if self.frame is not None:
+            self.last = add_offsets(self.end, self.frame)
+            self.frame = None
+
+
 @dataclass(frozen=True, kw_only=True)
 class AffinePass(Pass):
     """Base of the transform passes; subclasses say which record they apply."""
@@ -121,72 +138,68 @@ class AffinePass(Pass):
     def run(self, cmds: Iterable[Command], ctx: PassContext) -> Iterator[Command]:
         return expand(self.run_items(cmds, ctx))
 
+    def _entry(self, frame: Frame, cache: dict[int, tuple[Frame, Affine | None, Frame]]
+               ) -> tuple[Frame, Affine | None, Frame]:
+        entry = cache.get(id(frame))
+        if entry is None or entry[0] is not frame:
+            aff = self.affine(frame)
+            entry = cache[id(frame)] = (frame, aff, self.strip(frame, aff))
+        return entry
+
+    def _batch(self, x: MoveBatch, st: _Through) -> MoveBatch | None:
+        """``x`` passed through whole or mapped with array operations (``st`` updated); None: command
+        by command."""
+        frame = x.frame
+        if x.passes_whole:  # else its commands one by one (the per-command fast path still applies)
+            if st.frame is not None:
+                if frame is st.frame and x.start0 == st.end:
+                    st.end = x.last_end
+                    return x
+                st.leave()
+            _, aff, nf = self._entry(frame, st.cache)
+            if aff is None and nf is frame and (st.last is None or sub_offsets(st.last, frame) == x.start0):
+                st.frame, st.end = frame, x.last_end  # as the first move would, the rest follow
+                return x
+        _, aff, nf = self._entry(frame, st.cache)
+        if aff is None:
+            return None
+        st.leave()
+        mapped = _mapped(x, aff, nf, st.last)
+        if mapped is not None:
+            st.last = add_offsets(mapped.last_end, nf)
+        return mapped
+
     def run_items(self, items: Iterable[Item], ctx: PassContext) -> Iterator[Item]:
-        last: Vec6 | None = None  # actual end of the previous motion, program + offsets
-        cache: dict[int, tuple[Frame, Affine | None, Frame]] = {}
         # Fast path: once a motion went through unchanged (no transform in its frame), the
         # next motion (or batch of moves) in the same frame object that starts where it ended
         # goes through unchanged too, without per-command work; ``last`` is materialised on leaving.
-        t_frame: Frame | None = None  # frame and end of the last motion passed through
-        t_end: Vec6 = ZERO6
+        st = _Through()
         for x in items:
             if isinstance(x, MoveBatch):
-                frame = x.frame
-                if x.passes_whole:  # else its commands one by one (the fast path below still applies)
-                    if t_frame is not None:
-                        if frame is t_frame and x.start0 == t_end:
-                            t_end = x.last_end
-                            yield x
-                            continue
-                        last = add_offsets(t_end, t_frame)
-                        t_frame = None
-                    entry = cache.get(id(frame))
-                    if entry is None or entry[0] is not frame:
-                        aff = self.affine(frame)
-                        entry = cache[id(frame)] = (frame, aff, self.strip(frame, aff))
-                    if entry[1] is None and entry[2] is frame and (
-                            last is None or sub_offsets(last, frame) == x.start0):
-                        t_frame, t_end = frame, x.last_end  # as the first move would, the rest follow
-                        yield x
-                        continue
-                entry = cache.get(id(frame))
-                if entry is None or entry[0] is not frame:
-                    aff = self.affine(frame)
-                    entry = cache[id(frame)] = (frame, aff, self.strip(frame, aff))
-                if entry[1] is not None:
-                    if t_frame is not None:
-                        last = add_offsets(t_end, t_frame)
-                        t_frame = None
-                    mapped = _mapped(x, entry[1], entry[2], last)
-                    if mapped is not None:
-                        last = add_offsets(mapped.last_end, entry[2])
-                        yield mapped
-                        continue
+                done = self._batch(x, st)
+                if done is not None:
+                    yield done
+                    continue
                 cmds: Iterable[Command] = x.commands()
             else:
                 cmds = (x,)
             for c in cmds:
                 frame = c.frame
-                if t_frame is not None:
-                    if frame is t_frame and isinstance(c, _MOTIONS) and c.start == t_end:
-                        t_end = c.end
+                if st.frame is not None:
+                    if frame is st.frame and isinstance(c, _MOTIONS) and c.start == st.end:
+                        st.end = c.end
                         yield c
                         continue
-                    last = add_offsets(t_end, t_frame)
-                    t_frame = None
-                entry = cache.get(id(frame))
-                if entry is None or entry[0] is not frame:
-                    aff = self.affine(frame)
-                    entry = cache[id(frame)] = (frame, aff, self.strip(frame, aff))
-                _, aff, nf = entry
+                    st.leave()
+                _, aff, nf = self._entry(frame, st.cache)
                 if isinstance(c, Rapid | Linear | Arc):
-                    out = self._motion(c, aff, nf, last, ctx)
-                    last = add_offsets(out.end, nf)
+                    out = self._motion(c, aff, nf, st.last, ctx)
+                    st.last = add_offsets(out.end, nf)
                     if out is c and aff is None and nf is frame:
-                        t_frame, t_end = frame, c.end
+                        st.frame, st.end = frame, c.end
                     yield out
                 elif isinstance(c, Cycle):  # kept whole for the G-code backend (untransformed frames only)
-                    last = add_offsets(c.holes[-1], nf)
+                    st.last = add_offsets(c.holes[-1], nf)
                     yield c if nf is frame else replace(c, frame=nf)
                 else:
                     yield c if nf is frame else replace(c, frame=nf)
