@@ -58,9 +58,16 @@ _SOLVED = ("Solve_Succeeded", "Solved_To_Acceptable_Level")
 
 def accel_step_caps(seg: Segments, jmax_mm_s3: FloatArray, period_s: float) -> FloatArray:
     """``(k + 1,)`` bounds on ``|a|`` at the vertices (inf at the ends and where the direction
-    does not change): the per-axis step ``a |du_i|`` stays within ``j_i T``."""
+    does not change): the per-axis step ``a |du_i|`` stays within ``j_i T`` (``du`` between
+    the end tangent of one segment and the start tangent of the next, when curved segments
+    give them)."""
     out = np.full(seg.count + 1, np.inf)
-    du = np.abs(seg.u[1:] - seg.u[:-1])
+    u_in = getattr(seg, "u_in", None)  # tangents at the segment ends, where segments are curved
+    u_out = getattr(seg, "u_out", None)
+    if u_in is not None and u_out is not None:
+        du = np.abs(u_in[1:] - u_out[:-1])
+    else:
+        du = np.abs(seg.u[1:] - seg.u[:-1])
     if du.size:
         with np.errstate(divide="ignore"):
             per_axis = np.where(du > 1e-12, jmax_mm_s3[None, :du.shape[1]] * period_s / np.maximum(du, 1e-300), np.inf)
