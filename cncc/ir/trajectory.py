@@ -249,6 +249,9 @@ class Trajectory:
 
     def sample(self, t_s: FloatArray) -> State:
         """Position, velocity, acceleration, jerk at times ``t_s`` (shape ``(q,)``) -> ``(q, m)``."""
+        if self.phase_count == 0:  # no motion: at rest at the origin
+            z = np.zeros((np.shape(t_s)[0], len(self.axes)))
+            return z, z.copy(), z.copy(), z.copy()
         k = self.phase_at(t_s)
         return self.states(k, np.asarray(t_s, np.float64) - self.t0_s[k])
 

@@ -114,7 +114,7 @@ def _plan_path(run: object, machine: MachineModel, limits: AxisLimits, level: in
 
     assert isinstance(run, PathRun)
     whole = level == 2 and O2_PROFILE == "scurve"  # the S-curve plans its stops itself: no parts
-    if level >= 2 and rule is CornerRule.BLEND:
+    if level >= 2 and rule is CornerRule.BLEND and run.cmd.size > 1:  # a single piece has no corner to round
         from cncc.passes.planning.corners import plan_blended
 
         parts = plan_blended(run, machine, limits, lambda part: _profile(part, machine, limits, level, rule, sink),

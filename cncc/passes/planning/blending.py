@@ -152,6 +152,10 @@ def velocity_step_caps(seg: Segments, limits: AxisLimits, period_s: float) -> Fl
     return caps
 
 
+TANGENT_STEP_SHARE = 0.5
+"""Share of ``j_i T`` a curvature step at a tangent joint may take (the rest: the path's own
+jerk within the same period, which the controller's averaging adds to it)."""
+
 CURVATURE_STEP_SHARE = 0.5
 """Share of ``j_i T`` the centripetal acceleration step at a curvature jump may take where
 the path also turns (the tangential step takes the other half); all of it at tangent joints."""
@@ -169,7 +173,7 @@ def curvature_step_caps(seg: Segments, limits: AxisLimits, period_s: float) -> F
     jump = np.abs(c0[1:] - c1[:-1])
     # a tangent joint has no tangential acceleration step: the whole j T is the centripetal one's
     tangent = seg.turn().max(axis=1, initial=0.0) < 1e-9
-    share = np.where(tangent, 1.0, CURVATURE_STEP_SHARE)[:, None]
+    share = np.where(tangent, TANGENT_STEP_SHARE, CURVATURE_STEP_SHARE)[:, None]
     budget = share * limits.jmax_mm_s3[None, :] * period_s
     with np.errstate(divide="ignore"):
         v2 = np.where(jump > 1e-12, budget / np.maximum(jump, 1e-300), np.inf).min(axis=1)

@@ -83,7 +83,8 @@ def rounded_parts(run: PathRun, stop: np.ndarray | None, machine: MachineModel, 
     if seg is None:
         return []
     if seg.count >= 2:
-        caps = velocity_step_caps(seg, limits, machine.interpolation_period_s)
+        native = run.geo is not None
+        caps = continuous_caps(seg, velocity_step_caps(seg, limits, machine.interpolation_period_s), native)
         if stop is not None and seg.vorigin is not None:
             caps = np.where(stop[seg.vorigin[1:-1]], 0.0, caps)
         seg.vvert[1:-1] = np.minimum(seg.vvert[1:-1], caps)
@@ -172,12 +173,28 @@ def _blend_speeds(run: PathRun, machine: MachineModel, limits: AxisLimits
     seg = make_segments(_rounded(run, limits, machine), limits, machine)
     if seg is None or seg.count < 2 or seg.vorigin is None:
         return out, None, None
-    caps = velocity_step_caps(seg, limits, machine.interpolation_period_s)
+    caps = continuous_caps(seg, velocity_step_caps(seg, limits, machine.interpolation_period_s), run.geo is not None)
     np.minimum.at(out, seg.vorigin[1:-1], caps)
     if seg.geo is not None:  # native blend arcs: crossed at most at their own speed cap
         blend = seg.vorigin[:-1] == seg.vorigin[1:]
         np.minimum.at(out, seg.vorigin[:-1][blend], seg.vcap[blend])
     return out, seg, caps
+
+
+STEP_SLACK_MM_S = 1e-7
+"""On native -O2 runs a corner left sharp (a reversal, a corner too tight to blend) keeps
+every axis' velocity step within this: practically a stop, so the velocity is continuous
+wherever the machine declares no step (blend machines)."""
+
+
+def continuous_caps(seg: Segments, caps: FloatArray, native: bool) -> FloatArray:
+    """``caps`` of the interior vertices, on native runs also ``STEP_SLACK_MM_S / |du_i|``."""
+    if not native or caps.size == 0:
+        return caps
+    du = seg.turn().max(axis=1)
+    with np.errstate(divide="ignore"):
+        out: FloatArray = np.minimum(caps, np.where(du > 0, STEP_SLACK_MM_S / np.maximum(du, 1e-300), np.inf))
+    return out
 
 
 def _rounded(run: PathRun, limits: AxisLimits, machine: MachineModel, sharp: np.ndarray | None = None) -> PathRun:
