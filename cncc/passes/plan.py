@@ -120,9 +120,11 @@ def _plan_path(run: object, machine: MachineModel, limits: AxisLimits, level: in
         parts = plan_blended(run, machine, limits, lambda part: _profile(part, machine, limits, level, rule, sink),
                              decide_stops=level >= 3, whole=whole)
         if level >= 3:
-            from cncc.passes.planning.optimal import optimise
+            from cncc.passes.planning.optimal import accel_step_caps, optimise
 
-            return [_judged_rows(part, ph, optimise(part, ph, sink), machine, limits, sink) for part, ph in parts]
+            period_s = machine.interpolation_period_s
+            return [_judged_rows(part, ph, optimise(part, ph, sink, vertex_acap=accel_step_caps(
+                part, limits.jmax_mm_s3, period_s)), machine, limits, sink) for part, ph in parts]
         return [path_rows(part, ph) for part, ph in parts]
     seg = make_segments(run, limits, machine)
     if seg is None:
@@ -132,9 +134,10 @@ def _plan_path(run: object, machine: MachineModel, limits: AxisLimits, level: in
     for part in [seg] if whole else split_at_stops(seg):
         ph = _profile(part, machine, limits, level, rule, sink)
         if level >= 3 and part.count > 1:
-            from cncc.passes.planning.optimal import optimise
+            from cncc.passes.planning.optimal import accel_step_caps, optimise
 
-            ph = optimise(part, ph, sink)
+            ph = optimise(part, ph, sink, vertex_acap=accel_step_caps(part, limits.jmax_mm_s3,
+                                                                      machine.interpolation_period_s))
         out.append(path_rows(part, ph))
     return out
 
