@@ -67,11 +67,24 @@ def plan_commands(cmds: Sequence[Command], machine: MachineModel, level: int = 2
 
     sink = sink if sink is not None else DiagnosticSink()
     level = max(0, min(3, level))
-    if level == 3:  # -O3 optimises the chord structure; it never returns a plan slower than -O2's
+    if level == 3:  # -O3 optimises the chord structure; it never returns a plan slower than -O2's,
+        # nor one that verify would refuse (its chords' velocity steps under strict continuity)
         best = _plan_level(cmds, machine, 3, sink, progress)
         o2 = _plan_level(cmds, machine, 2, DiagnosticSink(), None)
-        return o2 if o2.duration_total_s < best.duration_total_s else best
+        if o2.duration_total_s < best.duration_total_s or not _verifies(best, cmds, machine):
+            return o2
+        return best
     return _plan_level(cmds, machine, level, sink, progress)
+
+
+def _verifies(traj: Trajectory, cmds: Sequence[Command], machine: MachineModel) -> bool:
+    """``traj`` passes verify's dynamic checks at -O3 (soft limits aside: they need the work offsets)."""
+    from cncc.machines import effective_corner_rule
+    from cncc.passes.verify import verify_trajectory
+
+    report = verify_trajectory(traj, cmds, machine, DiagnosticSink(), corner_rule=effective_corner_rule(machine, 3),
+                               check_dynamics=True, jerk_limited=True, check_soft_limits=False)
+    return report.count == 0
 
 
 def _plan_level(cmds: Sequence[Command], machine: MachineModel, level: int, sink: DiagnosticSink,

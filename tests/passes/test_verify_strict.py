@@ -156,8 +156,10 @@ def test_averaged_jerk_adds_up_steps_inside_one_period() -> None:
     kw = {"corner_rule": CornerRule.BLEND, "jerk_limited": True}
     # each step alone is within j * T = 50 mm/s^2: the per-boundary rule accepts both
     assert dg.VERIFY_ACCEL_STEP not in _codes(close, strict_continuity=False, **kw)
-    assert dg.VERIFY_ACCEL_STEP in _codes(close, strict_continuity=True, **kw)  # 60 + ... > 50 within T
-    assert dg.VERIFY_ACCEL_STEP not in _codes(apart, strict_continuity=True, **kw)
+    assert dg.VERIFY_ACCEL_STEP in _codes(close, strict_continuity=True, strict_jerk=True, **kw)  # 60 + ... > 50
+    assert dg.VERIFY_ACCEL_STEP not in _codes(apart, strict_continuity=True, strict_jerk=True, **kw)
+    # the averaged jerk is its own switch (off by default): strict continuity alone keeps the per-boundary rule
+    assert dg.VERIFY_ACCEL_STEP not in _codes(close, strict_continuity=True, strict_jerk=False, **kw)
 
 
 def test_boundary_states_read_both_sides_through_the_api() -> None:
