@@ -311,19 +311,7 @@ def arc_points(cmd: Arc, sag_mm: float, chord_max_mm: float = math.inf) -> Float
     start = np.array(cmd.start, float)
     end = np.array(cmd.end, float)
     cf, cs = cmd.center[f], cmd.center[s]
-    r0 = math.hypot(start[f] - cf, start[s] - cs)
-    r1 = math.hypot(end[f] - cf, end[s] - cs)
-    a0 = math.atan2(start[s] - cs, start[f] - cf)
-    a1 = math.atan2(end[s] - cs, end[f] - cf)
-    turns = cmd.turns if cmd.turns != 0 else 1
-    if turns > 0:
-        sweep = (a1 - a0) % (2 * math.pi)
-        sweep = sweep if sweep > 1e-9 else 2 * math.pi
-        sweep += 2 * math.pi * (turns - 1)
-    else:
-        sweep = -((a0 - a1) % (2 * math.pi))
-        sweep = sweep if sweep < -1e-9 else -2 * math.pi
-        sweep -= 2 * math.pi * (-turns - 1)
+    r0, r1, a0, sweep = _sweep(cmd)
     r = max(r0, r1, 1e-9)
     dtheta = 2 * math.acos(max(1 - sag_mm / r, -1.0)) if sag_mm < r else math.pi / 2
     other = float(np.linalg.norm(np.delete(end - start, [f, s])))

@@ -102,24 +102,7 @@ def make_segments(run: PathRun, limits: AxisLimits, machine: MachineModel) -> Se
         return None
     idx = np.flatnonzero(keep)
     d, length = d[idx], length[idx]
-    p0 = pts[idx]
-    u = d / length[:, None]
-    feed = np.minimum(run.feed_mm_s[idx], machine.max_feed_mm_min / 60.0)
-    rapid = run.rapid[idx]
-    v_axis = path_limit(limits.vmax_mm_s, u)
-    v_step = path_limit(limits.step_rate_mm_s, u)
-    v_rapid = path_limit(limits.rapid_mm_s, u)
-    vcap = np.where(rapid, v_rapid, np.minimum(feed, v_axis))
-    vlim = np.where(rapid, Limit.RAPID, np.where(feed <= v_axis, Limit.FEED, Limit.AXIS_VELOCITY))
-    vlim = np.where(~rapid & (v_step <= vcap * (1 + 1e-12)) & (v_step < limits.vmax_mm_s.max()), Limit.STEP_RATE, vlim)
-    s0 = np.concatenate([[0.0], np.cumsum(length)])
-    vvert = np.full(idx.size + 1, np.inf)
-    vvert[0] = vvert[-1] = 0.0
-    vpoint = np.concatenate([idx, idx[-1:] + 1])
-    vorigin = vpoint if run.origin is None else run.origin[vpoint]
-    return Segments(p0, u, length, s0, run.cmd[idx], vcap, vlim.astype(np.int8),
-                    path_limit(limits.amax_mm_s2, u), path_limit(limits.jmax_mm_s3, u), vvert, vorigin,
-                    run.arc_vertex[vpoint])
+    return _line_segments(run, idx, pts[idx], d / length[:, None], length, limits, machine)
 
 
 def _sin_bound(theta0: FloatArray, sweep: FloatArray, phase: float) -> FloatArray:
