@@ -248,25 +248,11 @@ class _Walk:
                     and (motion == "linear" or motion == "rapid" if is_ is None and js is None
                          else (motion == "arc_cw" or motion == "arc_ccw") and zs is None
                          and self.frame.plane is Plane.XY)):
-                try:
-                    x, y, z = p[0], p[1], p[2]
-                    if xs is not None:
-                        d = float(xs) * (k_pt if "." in xs else k_int)
-                        x = x + d if inc else d
-                    if ys is not None:
-                        d = float(ys) * (k_pt if "." in ys else k_int)
-                        y = y + d if inc else d
-                    if zs is not None:
-                        d = float(zs) * (k_pt if "." in zs else k_int)
-                        z = z + d if inc else d
+                try:  # every number first: one that float() rejects sends the line to the general path
                     f_new = float(fs) if fs is not None else -1.0
                     if f_new == 0.0 and motion != "rapid":
                         raise ValueError("F0 on a feed move: the general path reports it")
-                    ci, cj = p[0], p[1]
-                    if is_ is not None:
-                        ci += float(is_) * (k_pt if "." in is_ else k_int)
-                    if js is not None:
-                        cj += float(js) * (k_pt if "." in js else k_int)
+                    x, y, z, ci, cj = _words(p, xs, ys, zs, is_, js, k_pt, k_int, inc)
                     if (is_ is not None or js is not None) and ci == p[0] and cj == p[1]:
                         raise ValueError("zero-radius arc: the general path reports it")
                 except ValueError:
@@ -429,21 +415,7 @@ class _Walk:
         motion = ends.motion_before(k) if gs is None else _MOTIONS[int(gs)]
         p = start
         k_pt, k_int, inc = self.k_pt, self.k_int, self.inc
-        x, y, z = p[0], p[1], p[2]
-        if xs is not None:
-            d = float(xs) * (k_pt if "." in xs else k_int)
-            x = x + d if inc else d
-        if ys is not None:
-            d = float(ys) * (k_pt if "." in ys else k_int)
-            y = y + d if inc else d
-        if zs is not None:
-            d = float(zs) * (k_pt if "." in zs else k_int)
-            z = z + d if inc else d
-        ci, cj = p[0], p[1]
-        if is_ is not None:
-            ci += float(is_) * (k_pt if "." in is_ else k_int)
-        if js is not None:
-            cj += float(js) * (k_pt if "." in js else k_int)
+        x, y, z, ci, cj = _words(p, xs, ys, zs, is_, js, k_pt, k_int, inc)
         q = (x, y, z, p[3], p[4], p[5])
         feed_mm_min = ends.feed_before(k)
         if fs is not None:
@@ -457,6 +429,29 @@ class _Walk:
         else:
             yield Arc(span, frame, p, q, (ci, cj, p[2], p[3], p[4], p[5]), -1 if motion == "arc_cw" else 1,
                       Plane.XY, feed_mm_min, self.path)
+
+
+def _words(p: Vec6, xs: str | None, ys: str | None, zs: str | None, is_: str | None, js: str | None,
+           k_pt: float, k_int: float, inc: bool) -> tuple[float, float, float, float, float]:
+    """X, Y, Z and the arc centre of a plain block's words from ``p``, as the fast path's loop reads
+    them (:func:`cncc.frontend.fastpath.lower_straight`, inlined there for speed); ValueError for a
+    number that float() rejects."""
+    x, y, z = p[0], p[1], p[2]
+    if xs is not None:
+        d = float(xs) * (k_pt if "." in xs else k_int)
+        x = x + d if inc else d
+    if ys is not None:
+        d = float(ys) * (k_pt if "." in ys else k_int)
+        y = y + d if inc else d
+    if zs is not None:
+        d = float(zs) * (k_pt if "." in zs else k_int)
+        z = z + d if inc else d
+    ci, cj = p[0], p[1]
+    if is_ is not None:
+        ci += float(is_) * (k_pt if "." in is_ else k_int)
+    if js is not None:
+        cj += float(js) * (k_pt if "." in js else k_int)
+    return x, y, z, ci, cj
 
 
 @dataclass(slots=True)
