@@ -8,6 +8,7 @@ target keeps (:mod:`cncc.backends.gcode.keep_transforms`).
 
 from __future__ import annotations
 
+import math
 from collections.abc import Iterator
 
 from cncc import diagnostics as dg
@@ -167,14 +168,20 @@ class FrameSync(BlockWriter):
         return out
 
     def _tool_length(self, f: Frame) -> list[str]:
+        """The target's tool length block for ``f`` (G43/G44 H, G49, grbl's G43.1 Z), and the state it sets.
+
+        An H number is written as the target's G43/G44 H even when its length is zero here (no --tools
+        table, or H holds 0): the target's table value applies, as the source's does on its machine.
+        The sign of a zero length is the sign of the zero (G44 stores -0.0)."""
         tf = self.tf
-        if f.tool_length_mm == 0.0 and self.t.has("length_off"):
-            tf.tool_mm, tf.tool_index = 0.0, 0
-            return [self.block([self.t.code("length_off")])]
-        op = "length_plus" if f.tool_length_mm > 0 else "length_minus"
+        op = "length_minus" if math.copysign(1.0, f.tool_length_mm) < 0 else "length_plus"
         if f.tool_length_index > 0 and self.t.has(op) and f.tool_length_axis == 2:
             tf.tool_mm, tf.tool_index, tf.tool_axis = f.tool_length_mm, f.tool_length_index, f.tool_length_axis
             return [self.block([self.t.code(op), f"H{f.tool_length_index}"])]
+        if f.tool_length_mm == 0.0 and self.t.has("length_off"):
+            # the state is the frame's (its H number too), so the next move does not write G49 again
+            tf.tool_mm, tf.tool_index, tf.tool_axis = 0.0, f.tool_length_index, f.tool_length_axis
+            return [self.block([self.t.code("length_off")])]
         if self.t.has("length_dynamic") and f.tool_length_axis == 2:  # grbl G43.1 Z<length>
             tf.tool_mm, tf.tool_index, tf.tool_axis = f.tool_length_mm, f.tool_length_index, 2
             return [self.block([self.t.code("length_dynamic"), f"Z{self.length(f.tool_length_mm)}"])]
