@@ -23,16 +23,17 @@ arcs and helices).
   their acceleration by design and are checked with ``jerk_limited=False``.
 * E0617 corner: velocity steps between phases.  ``junction-deviation``: grbl's
   junction speed for the step's angle; ``speed-step``: per-axis step <= the axis'
-  speed step (take-off speed from or to rest); ``blend`` / ``exact-stop``: the
+  speed step (take-off speed from or to rest, or on both sides of a stop); ``blend`` / ``exact-stop``: the
   controller spreads a step over one interpolation period ``T``, so the axis sees
   ``a(t) + sum(steps in (t - T, t]) / T``, which must stay within ``max_accel``.
 * ``strict_continuity`` (:mod:`cncc.passes.verify_physics`, through the Trajectory API
   only): E0617 becomes velocity continuity at every boundary -- a per-axis velocity
   step only where the machine declares one (SZGH speed-step corners, take-off from
-  rest) or the plan's corner rule makes one (-O1 junction deviation); no smeared
-  steps -- and E0618 becomes the averaged jerk ``|a(t) - a(t - T)| <= max_jerk * T`` at
-  every instant (steps inside one period add up).  Axes that are not cubics within a
-  phase are checked for E0610-E0612 by dense sampling.  Default :data:`STRICT_CONTINUITY`.
+  or to rest, a stop through rest at the take-off speed) or the plan's corner rule
+  makes one (-O1 junction deviation); no smeared steps -- and E0618 becomes the
+  averaged jerk ``|a(t) - a(t - T)| <= max_jerk * T`` at every instant (steps inside
+  one period add up).  Axes that are not cubics within a phase are checked for
+  E0610-E0612 by dense sampling.  Default :data:`STRICT_CONTINUITY`.
 * E0614 feed: path speed above the programmed (and machine-capped) feed.
 * E0613 path (``check_path``): positions farther than the blend tolerance (+ arc
   tolerance) from the programmed path of the responsible command or its motion
@@ -248,9 +249,9 @@ def _corners(traj: Trajectory, v_end: FloatArray, a_end: FloatArray, lim: dict[s
     if rule is CornerRule.JUNCTION_DEVIATION:
         ok = small | _jd_ok(before, after, lim["a"], machine.junction_deviation_mm)
     elif rule is CornerRule.SPEED_STEP:
-        at_rest = (np.linalg.norm(before, axis=1) < 1e-9) | (np.linalg.norm(after, axis=1) < 1e-9)
-        allow = np.where(at_rest[:, None], np.maximum(lim["step"], lim["start"]), lim["step"])
-        ok = small | (np.abs(step) <= allow * (1 + REL) + 1e-9).all(axis=1)
+        from cncc.passes.verify_physics import steps_declared
+
+        ok = small | steps_declared(before, after, lim["step"], lim["start"], 1e-9)
     else:
         return _smeared(traj, step, a_end, lim["a"], period)[:n]
     bad = ~ok

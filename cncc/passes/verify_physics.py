@@ -11,7 +11,8 @@ law ``s(t)``).  The state just before a boundary ``t_b`` is ``sample(nextafter(t
 * :func:`velocity_steps_bad` -- strict velocity continuity (E0617 with
   ``strict_continuity``): a per-axis velocity step is allowed only where the machine
   declares one -- the SZGH speed-step corner rule (``max_speed_step_mm_min`` per axis),
-  the take-off speed from or to rest (``start_speed_mm_min``) -- or where the plan's
+  the take-off speed from or to rest and a stop through rest (``start_speed_mm_min``
+  on both sides: one step down to rest, one step up from it) -- or where the plan's
   corner rule makes one (-O1's junction deviation, judged by the caller).  Everything
   else must be continuous to a floating-point slack.
 * :func:`smeared_jerk_bad` -- the E0618 rule as the controller sees it: acceleration
@@ -71,13 +72,25 @@ def velocity_steps_bad(b: Boundaries, step_mm_s: FloatArray, start_mm_s: FloatAr
     """Boundary flags (``n + 1``): a per-axis velocity step beyond what the machine declares.
 
     ``step_mm_s`` per axis is the declared corner step (0 when the machine declares
-    none), ``start_mm_s`` the declared take-off speed (a step from or to rest)."""
-    step = b.v_after - b.v_before
-    at_rest = (np.abs(b.v_before).max(axis=1) <= VEL_ABS_SLACK_MM_S) | \
-              (np.abs(b.v_after).max(axis=1) <= VEL_ABS_SLACK_MM_S)
-    allow = np.where(at_rest[:, None], np.maximum(step_mm_s, start_mm_s)[None, :], step_mm_s[None, :])
+    none), ``start_mm_s`` the declared take-off speed.  A boundary is declared when every
+    axis steps by at most ``step_mm_s`` (a corner), or when it is a stop: every axis runs
+    at most at the take-off speed (or the corner step) on both sides, so that it stops in
+    one declared step and starts in another (SZGH-990MDb §5.4: ramp down to the start
+    speed, then stop in one step; motion starts at the start speed with no ramp; a stop
+    from or to rest is the case with one side at rest)."""
     slack = VEL_ABS_SLACK_MM_S + VEL_REL_SLACK * vmax_mm_s[None, :]
-    out: np.ndarray = np.asarray((np.abs(step) > allow * (1 + REL) + slack).any(axis=1))
+    out: np.ndarray = ~steps_declared(b.v_before, b.v_after, step_mm_s, start_mm_s, slack)
+    return out
+
+
+def steps_declared(v_before: FloatArray, v_after: FloatArray, step_mm_s: FloatArray, start_mm_s: FloatArray,
+                   slack: FloatArray | float) -> np.ndarray:
+    """Per boundary (rows of ``v_before``/``v_after``): the velocity step is a declared corner
+    step on every axis, or a stop through rest at the take-off speed (:func:`velocity_steps_bad`)."""
+    corner = (np.abs(v_after - v_before) <= step_mm_s[None, :] * (1 + REL) + slack).all(axis=1)
+    take_off = np.maximum(step_mm_s, start_mm_s)[None, :] * (1 + REL) + slack
+    stop = ((np.abs(v_before) <= take_off) & (np.abs(v_after) <= take_off)).all(axis=1)
+    out: np.ndarray = np.asarray(corner | stop)
     return out
 
 

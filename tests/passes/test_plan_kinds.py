@@ -30,6 +30,20 @@ def test_o2_verifies_every_path_kind(kind: str, machine: str, tmp_path: Path,
     assert rc == 0, err
 
 
+@pytest.mark.parametrize("machine", ["generic-mill", "szgh-990mdb"])
+@pytest.mark.parametrize("kind", sorted(KINDS))
+def test_o1_verifies_every_path_kind(kind: str, machine: str, tmp_path: Path,
+                                     capsys: pytest.CaptureFixture[str]) -> None:
+    # SZGH -O1 stops at every G00 the way the manual's stop goes (a step down from the take-off
+    # speed to rest, a step up from rest to it): E0617 on the mixed part before verify allowed it
+    src = tmp_path / "part.nc"
+    src.write_text(KINDS[kind](120), encoding="ascii")
+    rc = main([str(src), "-m", machine, "-O1", "--emit=timing", "--report-format=json", "-o", str(tmp_path / "t.json")])
+    err = capsys.readouterr().err
+    assert "E061" not in err
+    assert rc == 0, err
+
+
 def test_o3_keeps_every_axis_within_its_limits(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     # -O3 judged before it is kept (issue 26): an optimised window, else its start, else
     # -O2's S-curve, whichever keeps the per-axis jerk and acceleration within the limits

@@ -120,6 +120,31 @@ def test_take_off_from_rest_only_where_declared() -> None:
     assert _codes(fast, SZGH, **kw).get(dg.VERIFY_CORNER) == 1
 
 
+def _stop_between(v: tuple[float, float], v2: tuple[float, float]) -> Trajectory:
+    """A ramp from rest to ``v``, then from ``v2`` down to rest: the middle boundary steps from
+    ``v`` to ``v2`` with no time at rest."""
+    return _at_rest_ends(v, v2)
+
+
+@pytest.mark.parametrize("strict", [True, False])
+def test_a_stop_through_rest_at_the_take_off_speed_is_declared(strict: bool) -> None:
+    # SZGH-990MDb §5.4: ramp down to the start speed (P101-P104, 500 mm/min), stop in one step;
+    # motion starts at the start speed with no ramp.  A G01 ending at -450 mm/min in X followed
+    # by a G00 starting at +450 mm/min in X and Y is two declared steps (to rest, from rest),
+    # though the X step, 900 mm/min, is beyond the corner step (500 mm/min).
+    take_off = SZGH.axes[0].start_speed_mm_min / 60
+    assert take_off == pytest.approx(500 / 60) and SZGH.axes[0].max_speed_step_mm_min / 60 == pytest.approx(take_off)
+    v = 0.9 * take_off
+    kw = {"corner_rule": CornerRule.SPEED_STEP, "strict_continuity": strict, "jerk_limited": False}
+    assert dg.VERIFY_CORNER not in _codes(_stop_between((-v, 0.0), (v, v)), SZGH, **kw)
+    # one side above the take-off speed: the step to rest is not declared
+    assert _codes(_stop_between((-1.2 * take_off, 0.0), (v, v)), SZGH, **kw).get(dg.VERIFY_CORNER) == 1
+    assert _codes(_stop_between((-v, 0.0), (v, 1.2 * take_off)), SZGH, **kw).get(dg.VERIFY_CORNER) == 1
+    # generic-mill declares neither a take-off speed nor a corner step
+    assert _codes(_stop_between((-v, 0.0), (v, v)), GENERIC, **{**kw, "corner_rule": CornerRule.BLEND,
+                                                                "strict_continuity": True}).get(dg.VERIFY_CORNER)
+
+
 def test_junction_deviation_corner_of_o1_is_allowed_strict() -> None:
     # grbl: v^2 = a delta sin(t/2) / (1 - sin(t/2)) with a the acceleration along the
     # junction vector; a 90-degree X -> Y corner, junction vector (-1, 1)/sqrt2
