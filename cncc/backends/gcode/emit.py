@@ -300,8 +300,13 @@ class GcodeEmitter(ModeWriter):
         for k, hole in enumerate(() if pattern is not None else c.holes):
             self.inc_poison = True
             q = self._at(hole)
+            here = self.qpos or q
+            # a plane axis the source does not name (held: not positioned since the start or a cancel)
+            # stays where the machine is: a word for it would assume that position (X0. from X13)
             words = [f"{AXES[a]}{self.text(q[a], a)}" for a in range(6)
-                     if a != n and (a in (first, second) or q[a] != (self.qpos or q)[a])]
+                     if a != n and (q[a] != here[a] or (a in (first, second) and not c.frame.held_axes[a]))]
+            if k > 0 and not words:  # a repeat at a held point: the depth word drills where the tool is
+                words = [data[1]]
             if k == 0 and same:  # the cycle in force has this data: the hole, and G98/G99 if it changed
                 words = [ret if ret != self.cycle_return else "", *words, self._feed_word(c.feed_mm_min)]
             elif k == 0:

@@ -76,7 +76,7 @@ class FrameSync(BlockWriter):
         if rotation:
             lines.append(self._rotation_block(f.rotation))
         if scaling and f.scaling is not None:
-            lines.append(self._scaling_block(f.scaling))
+            lines.append(self._scaling_block(f.scaling, start))
         self.sync_poison = False
         yield from lines
 
@@ -96,8 +96,13 @@ class FrameSync(BlockWriter):
                                      if m.axes[k])]))
         return out
 
-    def _scaling_block(self, s: Scaling | None) -> str:
-        """G51 (SZGH G36, alone in its block) with the kept record's centre and factors, or G50 (G37)."""
+    def _scaling_block(self, s: Scaling | None, start: Vec6 | None = None) -> str:
+        """G51 (SZGH G36, alone in its block) with the kept record's centre and factors, or G50 (G37).
+
+        A centre coordinate of an axis whose position the output does not know, at the tool's position
+        (``start``: the source omitted it), is left out: the target's centre is then where its tool is,
+        as the source's; a number would assume where the machine started (and a scaled axis the
+        program never moves would move)."""
         self.scaling = s
         self.qpos = None
         on, off = scale_codes(self.t)
@@ -106,7 +111,9 @@ class FrameSync(BlockWriter):
         words = scale_words(self.t, s)
         assert words is not None, "keep_transforms keeps only writable scalings"
         fold = self.fold or (0.0,) * 6
-        return self.block([on, *(f"{AXES[k]}{self.length(s.center_mm[k] + fold[k])}" for k in words[0]), *words[1]])
+        centre = [k for k in words[0]
+                  if not (start is not None and k in self.unknown and abs(s.center_mm[k] - start[k]) <= 1e-9)]
+        return self.block([on, *(f"{AXES[k]}{self.length(s.center_mm[k] + fold[k])}" for k in centre), *words[1]])
 
     def _rotation_block(self, r: Rotation | None) -> str:
         """G68 with the kept record (centre in the target's program coordinates, angle in degrees), or G69."""

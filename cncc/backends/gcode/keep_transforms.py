@@ -132,7 +132,29 @@ def kept_transforms(cmds: Sequence[Command], target: Target, step_mm: StepMm) ->
         if f.incremental and any(r is not None and r not in kept for r in (f.rotation, f.mirror, f.scaling)):
             kept.difference_update((before.rotation, before.mirror, before.scaling))
     kept.difference_update(_moved_while_held(motions))
+    kept.difference_update(_scaled_before_named(cmds, target))
     return frozenset(kept)
+
+
+def _scaled_before_named(cmds: Sequence[Command], target: Target) -> set[Record]:
+    """Scalings the target writes with R (SZGH G36: only the axes it names are scaled) that come before
+    an axis they scale has had a position (``Frame.held_axes`` since the start).
+
+    Such a centre needs a number for that axis, which would assume where the machine started (and
+    move an axis the program never moves); leaving it out would leave the axis unscaled.  So cncc
+    applies the scaling itself.  (A scaling written with P or I/J/K leaves the centre out instead:
+    the emitter's ``_scaling_block``.)"""
+    out: set[Record] = set()
+    named = [False] * 6
+    for c in cmds:
+        r = c.frame.scaling
+        if r is not None and r not in out:
+            words = scale_words(target, r)
+            if words is not None and words[1][0].startswith("R") and not all(named[k] for k in words[0]):
+                out.add(r)
+        if isinstance(c, Rapid | Linear | Arc | Cycle):
+            named = [n or not h for n, h in zip(named, c.frame.held_axes, strict=True)]
+    return out
 
 
 def _moved_while_held(motions: Sequence[Command]) -> set[Record]:
