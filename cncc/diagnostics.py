@@ -280,6 +280,8 @@ INI_BAD_VALUE = _define("W0972", W, "an --ini value that LinuxCNC refuses (out o
                         "the dialect's default is kept, as LinuxCNC keeps its own")
 INI_BAD_LINE = _define("E0984", E, "a line of the --ini file is not a section, a NAME = VALUE line or a comment")
 BAD_PASS_SPEC = _define("E0991", E, "-p, --print-after: an unknown pass, an unknown option or a bad value")
+PASSES_OMITTED = _define("W0973", W, "-p leaves out path passes the output needs (cycles, frames, machine "
+                                     "coordinates): the output is not the program's motion")
 IR_INVARIANT = _define("E0992", E, "--verify-each: a pass broke an IR invariant (continuity, spans, machine frame)")
 
 # dialect data (E0940-E0944)

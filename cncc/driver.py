@@ -398,12 +398,29 @@ def check_pipeline(opts: Options, sources: SourceMap, sink: DiagnosticSink) -> b
             sink.emit(dg.BAD_PASS_SPEC, Span(src.source_id, exc.start, min(exc.end, len(opts.passes))),
                       f"-p: {exc.message}")
             return False
+        pass_list_omissions(opts, sources, sink)
     unknown = [n for n in opts.print_after if n not in pass_names()]
     if unknown:
         sink.emit(dg.BAD_PASS_SPEC, NO_SPAN, f"--print-after={unknown[0]}: unknown pass "
                                              f"(passes: {', '.join(pass_names())})")
         return False
     return True
+
+
+def pass_list_omissions(opts: Options, sources: SourceMap, sink: DiagnosticSink) -> None:
+    """W0973 when the -p list leaves out path passes the output is made of (not with -fsyntax-only
+    or --emit=none, which make no output; the dialect of the first file is not known yet, so
+    either compensation algorithm counts)."""
+    from cncc.pipeline.builder import omitted_passes
+
+    if opts.syntax_only or opts.emit == "none":
+        return
+    missing = omitted_passes(pipeline_config(opts))
+    if missing:
+        src = sources.add("<-p>", opts.passes)
+        sink.emit(dg.PASSES_OMITTED, Span(src.source_id, 0, len(opts.passes)),
+                  f"-p leaves out {', '.join(missing)}, which --emit={opts.emit} needs: its output is not the "
+                  f"program's motion (name them in -p to keep them)")
 
 
 def instrumentation(opts: Options, sources: SourceMap) -> Any:

@@ -162,6 +162,24 @@ def default_path_names(config: PipelineConfig, dialect: Dialect | None = None) -
     return ["expand-cycles", *frame, "arc-check"]
 
 
+CHECK_ONLY = frozenset({"arc-check"})  # path passes that report but leave the commands as they are
+
+
+def omitted_passes(config: PipelineConfig, dialect: Dialect | None = None) -> list[str]:
+    """The default path passes a ``-p`` spec leaves out although the output is made of what they do:
+    all of them (but the checks) when the spec names no path pass at all (``-p 'blend,plan,verify'``
+    replaces the plan stage and, with it, drops the path stage), and ``to-machine``/``tool-length``
+    when the output is in machine coordinates.  [] without a spec.  A spec that lists path passes
+    chose them: it is not second-guessed beyond the machine coordinates."""
+    if not config.spec:
+        return []
+    named = {r.name for r in requests(config.spec)}
+    defaults = [n for n in default_path_names(config, dialect) if n not in CHECK_ONLY]
+    if not named - set(PLAN_STAGE):
+        return defaults
+    return [n for n in defaults if n in MACHINE_ONLY and n not in named]
+
+
 def path_passes(config: PipelineConfig, dialect: Dialect) -> list[Pass]:
     """The path stage (the default, or the path-stage passes of ``config.spec``)."""
     defaults = path_options(config, dialect)
