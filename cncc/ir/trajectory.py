@@ -255,10 +255,9 @@ class Trajectory:
         if not bent.any():
             return out
         exact = self.path.states(k[bent], tau[bent])
-        res = tuple(np.array(x, copy=True) for x in out)
-        for dst, src in zip(res, exact, strict=True):
+        for dst, src in zip(out, exact, strict=True):  # fresh arrays (fancy-indexed rows): no copy
             dst[bent] = src
-        return res[0], res[1], res[2], res[3]
+        return out
 
     def end_state(self, k: int) -> tuple[FloatArray, FloatArray, FloatArray]:
         """Position, velocity, acceleration at the end of phase ``k``."""
