@@ -1,6 +1,6 @@
 """Commands -> runs: the path between two stops, as a polyline with per-piece data.
 
-Consumes IR commands in machine coordinates; produces a list of runs.  A run starts
+Consumes IR commands in machine coordinates; yields runs, one at a time.  A run starts
 and ends at rest.  A run is either a :class:`PathRun` (lines, interpolated rapids and
 arcs as chords, in order) or an :class:`IndependentRapid` (a dog-leg G00 whose axes
 each move at their own rate).  Runs are cut where a command ends in exact stop
@@ -19,7 +19,7 @@ interpolation period at the centripetal speed (see ``blending.py``).
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -153,37 +153,37 @@ class _Builder:
 
 
 def build_runs(cmds: Sequence[Command], machine: MachineModel, limits: AxisLimits, level: int,
-               sink: DiagnosticSink) -> list[Run]:
-    """Split the command list into runs (see the module docstring)."""
-    runs: list[Run] = []
+               sink: DiagnosticSink) -> Iterator[Run]:
+    """Split the command list into runs (see the module docstring), each yielded as soon as
+    it is closed (the planner holds one run at a time)."""
     native = level == 2 and NATIVE_ARCS
     exact_arcs = native_arcs(level, machine)
     b = _Builder(native=native)
     warned: set[str] = set()
-
-    def close() -> None:
-        nonlocal b
-        run = b.finish()
-        if run is not None:
-            runs.append(run)
-        b = _Builder(native=native)
-
     for index, cmd in enumerate(cmds):
         match cmd:
             case Rapid() | Linear() | Arc():
                 _check_axes(cmd, limits, sink, warned)
                 if isinstance(cmd, Rapid) and machine.rapid_mode is RapidMode.INDEPENDENT:
-                    close()
-                    runs.append(IndependentRapid(np.array(cmd.start, float), np.array(cmd.end, float), index))
+                    yield from _closed(b)
+                    b = _Builder(native=native)
+                    yield IndependentRapid(np.array(cmd.start, float), np.array(cmd.end, float), index)
                     continue
                 _add_motion(b, cmd, index, machine, limits, level, sink, warned, exact_arcs)
                 if cmd.motion.mode is PathMode.EXACT_STOP or (isinstance(cmd, Rapid) and machine.rapid_ends_in_stop):
-                    close()
+                    yield from _closed(b)
+                    b = _Builder(native=native)
             case _:
                 if forces_stop(cmd, machine):
-                    close()
-    close()
-    return runs
+                    yield from _closed(b)
+                    b = _Builder(native=native)
+    yield from _closed(b)
+
+
+def _closed(b: _Builder) -> Iterator[PathRun]:
+    run = b.finish()
+    if run is not None:
+        yield run
 
 
 def _add_motion(b: _Builder, cmd: Rapid | Linear | Arc, index: int, machine: MachineModel, limits: AxisLimits,

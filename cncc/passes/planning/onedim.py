@@ -35,7 +35,7 @@ def ruckig_move(distance: float, v_max: float, a_max: float, j_max: float, limit
     ph = _cached_move(distance, v_max, a_max, j_max, limit)
     if ph is None:
         return None
-    return Phases(*(np.array(x, copy=True) for x in (ph.t0, ph.dur, ph.s0, ph.v0, ph.a0, ph.j, ph.limit)))
+    return Phases(ph.t0.copy(), ph.dur.copy(), ph.s0.copy(), ph.v0.copy(), ph.a0.copy(), ph.j.copy(), ph.limit.copy())
 
 
 @functools.lru_cache(maxsize=4096)
