@@ -15,7 +15,11 @@ Run: ``python bench/planner.py [--quick] [--repeat N]``.  Prints the machine loa
     code and, where -O2 is slower than -O1, why: "jerk forces it" when the jerk-aware bound
     is above -O1's time (goals: -O2 >= 20,000 segments/s at 100k, -O2 CPU <= 3x -O1,
     RSS < 300 MB, exit 0).  ``--scale-only`` skips (a)-(d);
-(f) with ``--o3``: -O2/-O3 whole process on the arc and random-walk kinds at 1k.
+(f) with ``--o3``: -O2/-O3 whole process on the arc and random-walk kinds at 1k;
+(g) with ``--scale N,... --before DIR``: instead of (e), a before/after table in one run:
+    per kind and size, -O1 and -O2 CPU s and peak RSS of the tree ``DIR`` (e.g.
+    /work/before3) and of this tree, this tree's -O2/-O1 CPU ratio, -O2 segments per CPU
+    second and CPU microseconds per segment, and the -O2 cycle time after / before.
 """
 
 from __future__ import annotations
@@ -127,8 +131,13 @@ def main() -> None:
     ap.add_argument("--kinds", default="", help="comma-separated subset of the path kinds")
     ap.add_argument("--limit", type=float, default=300.0, help="seconds before a whole-process run is killed")
     ap.add_argument("--o3", action="store_true", help="with --scale: also (f) -O2/-O3 on the 1k arc and walk kinds")
+    ap.add_argument("--before", default="", help="with --scale: (g) before/after table against this source tree")
     args = ap.parse_args()
-    if args.scale:
+    if args.scale and args.before:
+        compare_runs([int(x) for x in args.scale.split(",")], args.kinds, args.limit, Path(args.before))
+        if args.scale_only:
+            return
+    elif args.scale:
         scale_runs([int(x) for x in args.scale.split(",")], args.kinds, args.limit, args.o3)
         if args.scale_only:
             return
@@ -228,6 +237,39 @@ def scale_runs(sizes: list[int], kinds: str, limit_s: float, o3: bool = False) -
                       f"{' '.join(codes)}", flush=True)
         if o3:
             o3_runs(Path(tmp), limit_s)
+
+
+def compare_runs(sizes: list[int], kinds: str, limit_s: float, before: Path) -> None:
+    """(g) the before/after table (see the module docstring)."""
+    import tempfile
+
+    from pathgen import KINDS
+    from scale import timing_run
+
+    def cpu(r: object) -> str:
+        assert hasattr(r, "rc") and hasattr(r, "cpu_s")
+        return f">{limit_s:.0f}" if r.rc == -1 else f"{r.cpu_s:.2f}"
+
+    wanted = [k for k in KINDS if not kinds or k in kinds.split(",")]
+    print(f"(g) whole process, cncc FILE --emit=timing --report-format=json, generic-mill, CPU s / peak MB; "
+          f"before = {before}, {_load()}")
+    print(f"    {'kind':12s} {'segments':>9s} | {'before -O1':>13s} {'before -O2':>13s} | {'after -O1':>13s} "
+          f"{'after -O2':>13s} | {'O2/O1':>5s} {'O2 seg/s':>8s} {'us/seg':>6s} {'cycle a/b':>9s}")
+    with tempfile.TemporaryDirectory() as tmp:
+        for kind in wanted:
+            for n in sizes:
+                path = Path(tmp) / f"{kind.replace(' ', '_').replace('.', '')}_{n}.nc"
+                path.write_text(KINDS[kind](n))
+                b1, _ = timing_run(path, 1, limit_s, root=before)
+                b2, cb = timing_run(path, 2, limit_s, root=before)
+                a1, _ = timing_run(path, 1, limit_s)
+                a2, ca = timing_run(path, 2, limit_s)
+                ratio = "" if a1.rc == -1 or a2.rc == -1 else f"{a2.cpu_s / a1.cpu_s:5.2f}"
+                rate = "" if a2.rc == -1 else f"{n / a2.cpu_s:8,.0f}"
+                per = "" if a2.rc == -1 else f"{1e6 * a2.cpu_s / n:6.0f}"
+                print(f"    {kind:12s} {n:9,d} | {cpu(b1):>7s} {b1.rss_mb:5.0f} {cpu(b2):>7s} {b2.rss_mb:5.0f} | "
+                      f"{cpu(a1):>7s} {a1.rss_mb:5.0f} {cpu(a2):>7s} {a2.rss_mb:5.0f} | {ratio:>5s} {rate:>8s} "
+                      f"{per:>6s} {ca / cb:9.4f}", flush=True)
 
 
 def o3_runs(tmp: Path, limit_s: float) -> None:

@@ -30,11 +30,11 @@ class Run:
 TIME = "/usr/bin/time"
 
 
-def run_cncc(path: Path, args: list[str], limit_s: float) -> Run:
+def run_cncc(path: Path, args: list[str], limit_s: float, root: Path = ROOT) -> Run:
     """Peak RSS through ``/usr/bin/time`` when present: a child forked from this (larger)
     process reports at least this process' RSS in ``wait4``, since exec keeps the forked
     copy's high-water mark."""
-    env = dict(os.environ, PYTHONPATH=str(ROOT))
+    env = dict(os.environ, PYTHONPATH=str(root))
     rss_file = path.with_suffix(".rss")
     timer = [TIME, "-f", "%M", "-o", str(rss_file)] if os.path.exists(TIME) else []
     cmd = [*timer, sys.executable, "-m", "cncc", str(path), *args]
@@ -65,13 +65,15 @@ def run_cncc(path: Path, args: list[str], limit_s: float) -> Run:
     return Run(usage.ru_utime + usage.ru_stime, rss_mb, rc, text)
 
 
-def timing_run(path: Path, level: int, limit_s: float, extra: list[str] | None = None) -> tuple[Run, float]:
-    """The run and the planned motion time (``columns[0].trajectory_s`` of the JSON report)."""
+def timing_run(path: Path, level: int, limit_s: float, extra: list[str] | None = None,
+               root: Path = ROOT) -> tuple[Run, float]:
+    """The run and the planned motion time (``columns[0].trajectory_s`` of the JSON report);
+    ``root``: the source tree that runs (another checkout for before/after tables)."""
     import json
 
     out = path.with_suffix(f".O{level}.json")
     run = run_cncc(path, ["--emit=timing", "--report-format=json", f"-O{level}", "-o", str(out), *(extra or [])],
-                   limit_s)
+                   limit_s, root)
     try:
         cycle = float(json.loads(out.read_text())["columns"][0]["trajectory_s"])
     except (OSError, ValueError, KeyError, IndexError):

@@ -103,6 +103,23 @@ class Geometry:
 
     def derivatives(self, g: IntArray, s: FloatArray) -> State:
         """``p(s), p'(s), p''(s), p'''(s)`` of segments ``g`` at ``s`` (shape ``(q,)`` each) -> ``(q, m)``."""
+        g = np.asarray(g, np.int64)
+        s = np.asarray(s, np.float64)
+        bent = (self.r0[g] != 0) | (self.dr[g] != 0)  # lines (no circle part): p = c + w s, w, 0, 0
+        if bent.all():
+            return self._circle_derivatives(g, s)
+        w = self.w[g]
+        p = self.c[g] + w * s[:, None]
+        d1 = np.array(w, copy=True)
+        d2 = np.zeros_like(p)
+        d3 = np.zeros_like(p)
+        if bent.any():
+            for dst, src in zip((p, d1, d2, d3), self._circle_derivatives(g[bent], s[bent]), strict=True):
+                dst[bent] = src
+        return p, d1, d2, d3
+
+    def _circle_derivatives(self, g: IntArray, s: FloatArray) -> State:
+        """The general formula of :meth:`derivatives` (circle part and axial rate)."""
         th = self.theta0[g] + self.kappa[g] * s
         cos, sin = np.cos(th)[:, None], np.sin(th)[:, None]
         e1, e2 = self.e1[g], self.e2[g]
@@ -164,8 +181,13 @@ class PathLaw:
     def states(self, k: IntArray, tau: FloatArray) -> State:
         """Exact per-axis position, velocity, acceleration, jerk of path phases ``k`` at local ``tau``."""
         s, sd, sdd, sddd = self.s_at(k, tau)
-        p, d1, d2, d3 = self.geometry.derivatives(np.maximum(self.seg[k], 0), s)
+        g = np.maximum(self.seg[k], 0)
+        geo = self.geometry
         sd, sdd, sddd = sd[:, None], sdd[:, None], sddd[:, None]
+        if not ((geo.r0[g] != 0) | (geo.dr[g] != 0)).any():  # lines only: p = c + w s
+            w = geo.w[g]
+            return geo.c[g] + w * s[:, None], w * sd, w * sdd, w * sddd
+        p, d1, d2, d3 = geo.derivatives(g, s)
         v = d1 * sd
         a = d2 * sd * sd + d1 * sdd
         j = d3 * sd**3 + 3 * d2 * sd * sdd + d1 * sddd
@@ -233,10 +255,9 @@ class Trajectory:
         if not bent.any():
             return out
         exact = self.path.states(k[bent], tau[bent])
-        res = tuple(np.array(x, copy=True) for x in out)
-        for dst, src in zip(res, exact, strict=True):
+        for dst, src in zip(out, exact, strict=True):  # fresh arrays (fancy-indexed rows): no copy
             dst[bent] = src
-        return res[0], res[1], res[2], res[3]
+        return out
 
     def end_state(self, k: int) -> tuple[FloatArray, FloatArray, FloatArray]:
         """Position, velocity, acceleration at the end of phase ``k``."""

@@ -89,28 +89,41 @@ def _verifies(traj: Trajectory, cmds: Sequence[Command], machine: MachineModel) 
 
 def _plan_level(cmds: Sequence[Command], machine: MachineModel, level: int, sink: DiagnosticSink,
                 progress: Callable[[int], None] | None) -> Trajectory:
+    from cncc.passes.planning.emit import assemble
+
+    return assemble(list(plan_pieces(cmds, machine, level, sink, progress)))
+
+
+def plan_pieces(cmds: Sequence[Command], machine: MachineModel, level: int = 2,
+                sink: DiagnosticSink | None = None, progress: Callable[[int], None] | None = None
+                ) -> Iterator[Rows]:
+    """The plan at ``-O<level>`` (0..2) piece by piece: the rows of each run (rest to rest),
+    in order, as soon as the run is planned, times local to the run (``Rows.t0`` from 0).
+
+    The streaming interface (``docs/planning.md``, "Streaming and memory"): a consumer that
+    handles one piece at a time keeps the planner's memory to the longest run;
+    :func:`cncc.passes.planning.emit.assemble` of all pieces is :func:`plan_commands`."""
     from cncc.machines import effective_corner_rule
-    from cncc.passes.planning.emit import assemble, merge_axes
+    from cncc.passes.planning.emit import merge_axes
     from cncc.passes.planning.geometry import IndependentRapid, build_runs
     from cncc.passes.planning.limits import axis_limits
     from cncc.passes.planning.onedim import independent_axes
 
+    sink = sink if sink is not None else DiagnosticSink()
     limits = axis_limits(machine)
     rule = effective_corner_rule(machine, level)
-    chunks: list[Rows] = []
     for run in build_runs(cmds, machine, limits, level, sink):
         if isinstance(run, IndependentRapid):
             take_off = limits.start_mm_s if rule is CornerRule.SPEED_STEP else limits.start_mm_s * 0
             profiles = independent_axes(run.start, run.end, level, limits.rapid_mm_s, limits.amax_mm_s2,
                                         limits.jmax_mm_s3, take_off)
-            chunks.append(merge_axes(profiles, run.start, run.cmd, _rapid_limit()))
+            yield merge_axes(profiles, run.start, run.cmd, _rapid_limit())
             if progress is not None:
                 progress(run.cmd + 1)
             continue
-        chunks.extend(_plan_path(run, machine, limits, level, rule, sink))
+        yield from _plan_path(run, machine, limits, level, rule, sink)
         if progress is not None and run.cmd.size:
             progress(int(run.cmd[-1]) + 1)
-    return assemble(chunks)
 
 
 def _rapid_limit() -> int:

@@ -1,16 +1,17 @@
 """Commands -> runs: the path between two stops, as a polyline with per-piece data.
 
-Consumes IR commands in machine coordinates; produces a list of runs.  A run starts
+Consumes IR commands in machine coordinates; yields runs, one at a time.  A run starts
 and ends at rest.  A run is either a :class:`PathRun` (lines, interpolated rapids and
 arcs as chords, in order) or an :class:`IndependentRapid` (a dog-leg G00 whose axes
 each move at their own rate).  Runs are cut where a command ends in exact stop
 (G09/G61/G60, ``rapid_ends_in_stop``), where a non-motion command forces a stop
 (:func:`cncc.passes.blend.forces_stop`) and around independent rapids.
 
-At -O2 (:data:`NATIVE_ARCS`) an arc or helix is **one piece** whose exact shape is a row
+At -O2 (:data:`NATIVE_ARCS`) and -O1 (:data:`O1_NATIVE_ARCS`, not on SZGH speed-step
+machines) an arc or helix is **one piece** whose exact shape is a row
 of :class:`cncc.ir.trajectory.Geometry` (``PathRun.geo`` / ``PathRun.arcs``): the planner
-plans it on its path coordinate with centripetal limits (``segments.py``).  At the other
-levels arcs become chords whose sagitta is within ``min(arc_tolerance_mm, blend
+plans it on its path coordinate with centripetal limits (``segments.py``).  Otherwise arcs
+become chords whose sagitta is within ``min(arc_tolerance_mm, blend
 tolerance)``; for -O3 the chords are also short enough that one chord takes about one
 interpolation period at the centripetal speed (see ``blending.py``).
 """
@@ -18,7 +19,7 @@ interpolation period at the centripetal speed (see ``blending.py``).
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -26,7 +27,7 @@ import numpy as np
 from cncc import diagnostics as dg
 from cncc.diagnostics import DiagnosticSink
 from cncc.ir.commands import Arc, Command, Linear, PathMode, Rapid
-from cncc.ir.machine import MachineModel, RapidMode
+from cncc.ir.machine import CornerRule, MachineModel, RapidMode
 from cncc.ir.trajectory import FloatArray, Geometry
 from cncc.passes.blend import forces_stop
 from cncc.passes.planning.limits import AxisLimits
@@ -42,7 +43,19 @@ NORMAL_SHARE = 0.5
 """Share of each axis' acceleration that velocity steps at chord vertices may use."""
 
 NATIVE_ARCS = True
-"""-O2 plans arcs and helices as one piece on their exact geometry (False: chords, as -O1/-O3)."""
+"""-O2 plans arcs and helices as one piece on their exact geometry (False: chords, as -O3)."""
+
+O1_NATIVE_ARCS = True
+"""-O1 too plans arcs and helices as one piece on their path coordinate (with the centripetal
+caps of ``segments.py``), except on SZGH speed-step machines, whose controller model steps
+the speed at chord vertices (False: chords, grbl-style, for every -O1 plan)."""
+
+
+def native_arcs(level: int, machine: MachineModel) -> bool:
+    """Whether a plan at ``-O<level>`` on ``machine`` keeps arcs as one exact piece."""
+    if level == 2:
+        return NATIVE_ARCS
+    return level == 1 and O1_NATIVE_ARCS and machine.corner_rule is not CornerRule.SPEED_STEP
 
 
 @dataclass
@@ -108,6 +121,9 @@ class _Builder:
 
     def add_native_arc(self, start: tuple[float, ...], end: tuple[float, ...], shape: Geometry, cmd: int,
                        feed: float, tol: float) -> None:
+        last = self.points[-1] if self.points else self.start
+        if last is not None and max(abs(a - b) for a, b in zip(last, start, strict=True)) > 1e-9:
+            self.add_line(last, start, cmd, False, feed, tol)  # reach the arc's start (chords do so too)
         self.add_line(start, end, cmd, False, feed, tol)
         self.geo[-1] = len(self.arcs)
         self.arcs.append(shape)
@@ -137,40 +153,41 @@ class _Builder:
 
 
 def build_runs(cmds: Sequence[Command], machine: MachineModel, limits: AxisLimits, level: int,
-               sink: DiagnosticSink) -> list[Run]:
-    """Split the command list into runs (see the module docstring)."""
-    runs: list[Run] = []
+               sink: DiagnosticSink) -> Iterator[Run]:
+    """Split the command list into runs (see the module docstring), each yielded as soon as
+    it is closed (the planner holds one run at a time)."""
     native = level == 2 and NATIVE_ARCS
+    exact_arcs = native_arcs(level, machine)
     b = _Builder(native=native)
     warned: set[str] = set()
-
-    def close() -> None:
-        nonlocal b
-        run = b.finish()
-        if run is not None:
-            runs.append(run)
-        b = _Builder(native=native)
-
     for index, cmd in enumerate(cmds):
         match cmd:
             case Rapid() | Linear() | Arc():
                 _check_axes(cmd, limits, sink, warned)
                 if isinstance(cmd, Rapid) and machine.rapid_mode is RapidMode.INDEPENDENT:
-                    close()
-                    runs.append(IndependentRapid(np.array(cmd.start, float), np.array(cmd.end, float), index))
+                    yield from _closed(b)
+                    b = _Builder(native=native)
+                    yield IndependentRapid(np.array(cmd.start, float), np.array(cmd.end, float), index)
                     continue
-                _add_motion(b, cmd, index, machine, limits, level, sink, warned)
+                _add_motion(b, cmd, index, machine, limits, level, sink, warned, exact_arcs)
                 if cmd.motion.mode is PathMode.EXACT_STOP or (isinstance(cmd, Rapid) and machine.rapid_ends_in_stop):
-                    close()
+                    yield from _closed(b)
+                    b = _Builder(native=native)
             case _:
                 if forces_stop(cmd, machine):
-                    close()
-    close()
-    return runs
+                    yield from _closed(b)
+                    b = _Builder(native=native)
+    yield from _closed(b)
+
+
+def _closed(b: _Builder) -> Iterator[PathRun]:
+    run = b.finish()
+    if run is not None:
+        yield run
 
 
 def _add_motion(b: _Builder, cmd: Rapid | Linear | Arc, index: int, machine: MachineModel, limits: AxisLimits,
-                level: int, sink: DiagnosticSink, warned: set[str]) -> None:
+                level: int, sink: DiagnosticSink, warned: set[str], exact_arcs: bool) -> None:
     tol = cmd.motion.blend_tolerance_mm
     tol_mm = machine.blend_tolerance_mm if tol is None else max(tol, 0.0)
     if isinstance(cmd, Rapid):
@@ -180,7 +197,7 @@ def _add_motion(b: _Builder, cmd: Rapid | Linear | Arc, index: int, machine: Mac
     if isinstance(cmd, Linear):
         b.add_line(cmd.start, cmd.end, index, False, feed, tol_mm)
         return
-    if level == 2 and NATIVE_ARCS:
+    if exact_arcs:
         shape = arc_geometry(cmd)
         if shape is not None:
             b.add_native_arc(cmd.start, cmd.end, shape, index, feed, tol_mm)

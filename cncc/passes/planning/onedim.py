@@ -8,6 +8,7 @@ the nominal one is a single constant-speed phase.
 
 from __future__ import annotations
 
+import functools
 import math
 
 import numpy as np
@@ -23,11 +24,22 @@ def empty_phases() -> Phases:
 
 
 def ruckig_move(distance: float, v_max: float, a_max: float, j_max: float, limit: int) -> Phases | None:
-    """Time-optimal jerk-limited rest-to-rest move of ``distance`` >= 0 (None if ruckig fails)."""
+    """Time-optimal jerk-limited rest-to-rest move of ``distance`` >= 0 (None if ruckig fails).
+
+    Programs repeat the same move many times (drilling cycles, step-downs): the profile of
+    each argument tuple is computed once (:func:`_cached_move`) and copied out."""
     if distance <= 1e-12:
         return empty_phases()
     if not all(math.isfinite(x) and x > 0 for x in (distance, v_max, a_max, j_max)):
         return None
+    ph = _cached_move(distance, v_max, a_max, j_max, limit)
+    if ph is None:
+        return None
+    return Phases(ph.t0.copy(), ph.dur.copy(), ph.s0.copy(), ph.v0.copy(), ph.a0.copy(), ph.j.copy(), ph.limit.copy())
+
+
+@functools.lru_cache(maxsize=4096)
+def _cached_move(distance: float, v_max: float, a_max: float, j_max: float, limit: int) -> Phases | None:
     from ruckig import InputParameter, Result, Ruckig, RuckigError, Trajectory
 
     inp = InputParameter(1)

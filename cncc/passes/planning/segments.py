@@ -130,31 +130,38 @@ def arc_bounds(geo: Geometry) -> tuple[FloatArray, FloatArray]:
 
 
 def _with_arcs(run: PathRun, limits: AxisLimits, machine: MachineModel) -> Segments | None:
-    """:func:`make_segments` of a run with native arc pieces (see the module docstring)."""
+    """:func:`make_segments` of a run with native arc pieces (see the module docstring).
+
+    The arc quantities are computed on the arc rows only and scattered (a run of lines with
+    blend arcs between them has as many lines as arcs: half the temporaries)."""
     assert run.geo is not None and run.arcs is not None
     pts = run.points
     d = np.diff(pts, axis=0)
     chord = np.linalg.norm(d, axis=1)
     is_arc = run.geo >= 0
-    arcs = run.arcs.take(np.maximum(run.geo, 0))
-    length = np.where(is_arc, arcs.length, chord)
+    length = np.where(is_arc, run.arcs.length[np.maximum(run.geo, 0)], chord)
     keep = length > 1e-9
     if not keep.any():
         return None
     idx = np.flatnonzero(keep)
-    is_arc, arcs, length = is_arc[idx], arcs.take(idx), length[idx]
+    is_arc, length = is_arc[idx], length[idx]
+    ai = np.flatnonzero(is_arc)  # rows (of idx) that are arcs
+    arcs = run.arcs.take(run.geo[idx[ai]])
     u_line = d[idx] / np.maximum(chord[idx], 1e-300)[:, None]
     ub, nb = arc_bounds(arcs)
-    rows = np.arange(idx.size)
-    _, t0, _, _ = arcs.derivatives(rows, np.zeros(idx.size))
+    rows = np.arange(ai.size)
+    _, t0, _, _ = arcs.derivatives(rows, np.zeros(ai.size))
     _, t1, _, _ = arcs.derivatives(rows, arcs.length)
-    arc_col = is_arc[:, None]
-    u = np.where(arc_col, ub, u_line)
+    u = u_line.copy()
+    u[ai] = ub
+    u_in, u_out = u_line.copy(), u_line.copy()
+    u_in[ai], u_out[ai] = t0, t1
     line_geo = Geometry.lines(pts[idx], u_line, length)
-    geo = Geometry(*(np.where(arc_col if getattr(arcs, f).ndim == 2 else is_arc, getattr(arcs, f),
-                              getattr(line_geo, f)) for f in Geometry.__slots__))
-    seg = replace(_line_segments(run, idx, pts[idx], u, length, limits, machine),
-                  u_in=np.where(arc_col, t0, u_line), u_out=np.where(arc_col, t1, u_line), geo=geo)
+    for f in Geometry.__slots__:
+        getattr(line_geo, f)[ai] = getattr(arcs, f)
+    seg = replace(_line_segments(run, idx, pts[idx], u, length, limits, machine), u_in=u_in, u_out=u_out,
+                  geo=line_geo)
+    del u_line, u_in, u_out, t0, t1, ub
     # arcs: centripetal caps; the plane axes are those the normal reaches
     r = np.maximum(np.minimum(arcs.r0, arcs.r0 + arcs.dr * arcs.length), 1e-9)
     plane = nb > 1e-12
@@ -164,17 +171,24 @@ def _with_arcs(run: PathRun, limits: AxisLimits, machine: MachineModel) -> Segme
     # |p'| slightly above 1 where the end radius differs (dr != 0): the feed is a path speed
     rho_max = np.maximum(arcs.r0, arcs.r0 + arcs.dr * arcs.length)
     stretch = np.sqrt(arcs.dr**2 + (rho_max * arcs.kappa) ** 2 + np.einsum("ij,ij->i", arcs.w, arcs.w))
-    feed = np.minimum(run.feed_mm_s[idx], machine.max_feed_mm_min / 60.0)
+    feed = np.minimum(run.feed_mm_s[idx[ai]], machine.max_feed_mm_min / 60.0)
     eps = np.abs(arcs.dr) / np.maximum(rho_max * np.abs(arcs.kappa), 1e-12)
     shrink = 1.0 / (1.0 + DR_MARGIN * eps)
-    v_arc = np.minimum(np.minimum(seg.vcap, v_cent), feed / np.maximum(stretch, 1.0)) * shrink
-    j_arc = JERK_SHARES[1] * seg.jcap * shrink
+    v_arc = np.minimum(np.minimum(seg.vcap[ai], v_cent), feed / np.maximum(stretch, 1.0)) * shrink
+    j_arc = JERK_SHARES[1] * seg.jcap[ai] * shrink
     a_arc, a_norm = arc_caps(arcs, v_arc, j_arc, limits, shrink)
-    seg.vlim = np.where(is_arc & (v_cent < seg.vcap), int(Limit.CENTRIPETAL), seg.vlim).astype(np.int8)
-    seg.vcap = np.where(is_arc, v_arc, seg.vcap)
-    seg.acap = np.where(is_arc, a_arc, seg.acap)
-    seg.jcap = np.where(is_arc, j_arc, seg.jcap)
-    seg.a_normal = np.where(arc_col, a_norm, 0.0)
+    vlim = seg.vlim.copy()
+    vlim[ai] = np.where(v_cent < seg.vcap[ai], int(Limit.CENTRIPETAL), vlim[ai])
+    seg.vlim = vlim.astype(np.int8)
+    seg.vcap = seg.vcap.copy()
+    seg.vcap[ai] = v_arc
+    seg.acap = seg.acap.copy()
+    seg.acap[ai] = a_arc
+    seg.jcap = seg.jcap.copy()
+    seg.jcap[ai] = j_arc
+    a_normal = np.zeros_like(seg.u)
+    a_normal[ai] = a_norm
+    seg.a_normal = a_normal
     return seg
 
 
