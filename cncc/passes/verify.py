@@ -64,11 +64,11 @@ REL = 1e-6  # relative slack on every limit (floating point)
 MAX_REPORTS = 5  # diagnostics per kind; the rest are counted
 PLAN_MIN_FEED_MM_MIN = 0.1  # the planners' documented smallest feed (docs/planning.md, W0606)
 STRICT_CONTINUITY = True  # default of the strict rule (-O2 plans arcs on their path coordinate and blends every corner)
-STRICT_JERK = False
+STRICT_JERK = True
 """Default of the averaged-jerk half of the strict rule (E0618 as ``|a(t) - a(t - T)| <= max_jerk * T``).
-Off by default: -O2 holds each curvature step at a blend's ends to ``max_jerk * T`` on its own, not
-to what is left of it after the path's jerk within the same period (docs/planning.md, known gaps);
-the per-boundary E0618 rule stays on."""
+On since 2026-12-02 (issue 26): -O2 coasts at the block boundaries where the curvature jumps
+(``planning/scurve.py``), so a step and the path's jerk within one period stay within ``max_jerk * T``
+together; ``verify{strict_jerk=false}`` keeps only the per-boundary rule."""
 
 
 @dataclass

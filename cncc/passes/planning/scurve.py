@@ -243,13 +243,14 @@ def coast_times(w: FloatArray, jump: FloatArray, kappa: FloatArray, jmax_mm_s3: 
                 period_s: float) -> FloatArray:
     """Coast (zero path jerk) on each side of a block boundary crossed at ``w`` where the
     curvature jumps, so that the controller's average over one period ``T`` sees the
-    centripetal step ``b = max_i w^2 jump_i / (j_i T)`` plus at most ``(1 - b) j_i T`` of
-    the path's own jerk: outside the coasts the axis jerk is within ``j_i``; during them only
-    the circle's turning jerk ``r = w^3 kappa^2 / j_i`` acts, so ``c = T b / (1 - r)``."""
+    centripetal step ``b_i = w^2 jump_i / (j_i T)`` plus at most ``(1 - b_i) j_i T`` of the
+    path's own jerk: outside the coasts the axis jerk is within ``j_i``; during them only the
+    circle's turning jerk ``r_i = w^3 kappa^2 / j_i`` acts, so ``c = T max_i b_i / (1 - r_i)``
+    (at most ``T``)."""
     step = (w * w)[:, None] * jump / (jmax_mm_s3[None, :] * period_s)
-    b = step.max(axis=1, initial=0.0)
-    r = np.minimum((w**3 * kappa**2) / float(jmax_mm_s3.min()), 0.5)  # (the caps keep it <= 1/4)
-    out: FloatArray = np.where(b > 1e-12, period_s * np.minimum(1.0, b / (1.0 - r)), 0.0)
+    turn = np.minimum((w**3 * kappa**2)[:, None] / jmax_mm_s3[None, :], 0.5)  # (the caps keep it <= 1/4)
+    need = np.where(jump > 1e-12, step / (1.0 - turn), 0.0).max(axis=1, initial=0.0)
+    out: FloatArray = period_s * np.minimum(1.0, need)
     return out
 
 
