@@ -85,9 +85,31 @@ their maximum does.
     the interval takes at least the two braking times (acceleration only: the jerk needs a
     second rest).  This replaces the piece's feed term when larger.
 
-Limitations (it is a bound, not an estimate): the jerk of a centripetal turn, the
-coupling of the axes at a corner and the accelerations at the extremes are dropped, so
-it is loose on short sharp-cornered paths; it is tight on feed-limited long moves.
+(6) Jerk-coupled corners (jerk-aware bound only).  In (5) let ``t*`` be the time of the
+    extreme of ``y = w_c . x`` between the visits ``t_c`` of ``M_c`` and ``t_c+1`` of
+    ``M_c+1``.  Since ``|y'''| <= J_w``, ``y''`` stays within ``J_w |t - t_m|`` of its value
+    ``gamma`` at a middle's visit ``t_m``; so on the half from ``t*`` (``y' = 0``) to ``t_m``
+    the speed away from the extreme is at most ``f(s) = int_0^s min(A_w, J_w (tau - u) -
+    gamma) du`` (``gamma`` signed towards the extreme, ``tau = |t_m - t*|``), and the half
+    covers at most ``E(tau, gamma) = int_0^tau min(V_w, f)`` (closed form,
+    :func:`half_reach_mm`): it takes at least ``tau(D, gamma)``, increasing in ``gamma``.
+    The interval ``[t_c, t_c+1]`` thus takes at least ``max(feed_c, tau(D1, beta_c) +
+    tau(D2, alpha_c))`` with ``beta_c = a(t_c) . w_c`` and ``alpha_c = a(t_c+1) . w_c``.  At a
+    middle between two corners one acceleration ``a`` gives both: ``alpha = a . w_(c-1)``,
+    ``beta = a . w_c``, and with ``|a_i| <= A_i``: ``alpha >= -A_w(c-1)``, ``beta >= -A_w(c)``,
+    ``alpha + beta >= -S``, ``S = sum_i |w_(c-1),i + w_c,i| A_i``.  Cutting ``alpha`` into
+    cells ``[alpha_k, alpha_k+1]``, any motion has in its cell ``tau(D2, alpha) >=
+    tau(D2, alpha_k)`` and ``tau(D1, beta) >= tau(D1, max(-A_w, -S - alpha_k+1))``; the
+    least sum over all cell sequences (dynamic programming along each chain of consecutive
+    corners) bounds the chain's intervals, which are those of (5), from below.  A chain's
+    first ``beta`` and last ``alpha`` are free (``-A_w``).  This is where sharp corners a
+    few millimetres apart cost jerk: braking into one corner and pushing away from the
+    previous one need opposite accelerations at the middle.
+
+Limitations (it is a bound, not an estimate): the jerk of a centripetal turn and the
+accelerations at the extremes are dropped, and (6) couples the corners only through the
+middles' accelerations, so it is loose on short sharp-cornered paths; it is tight on
+feed-limited long moves.
 """
 
 from __future__ import annotations
