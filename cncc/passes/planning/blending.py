@@ -152,10 +152,9 @@ def velocity_step_caps(seg: Segments, limits: AxisLimits, period_s: float) -> Fl
     return caps
 
 
-TANGENT_STEP_SHARE = 0.75
-"""Share of ``j_i T`` a curvature step at a tangent joint may take.  The S-curve coasts on both
-sides of such a joint (``scurve.coast_times``: ``c = T b / (1 - r)`` with the circle's turning
-jerk ``r <= 1/4`` of the arc caps), so any ``b <= 3/4`` fits within one period ``T``."""
+TANGENT_STEP_SHARE = 0.5
+"""Share of ``j_i T`` a curvature step at a tangent joint may take (the rest: the path's own
+jerk within the same period, which the controller's averaging adds to it)."""
 
 CURVATURE_STEP_SHARE = 0.5
 """Share of ``j_i T`` the centripetal acceleration step at a curvature jump may take where
