@@ -201,7 +201,7 @@ def test_contour_example_keeps_the_averaged_jerk() -> None:
 
 def test_tangent_joint_speed_is_the_closed_form_curvature_step_cap() -> None:
     # a line into a tangent arc of radius r: the centripetal acceleration steps by v^2 / r on
-    # the axis of the normal (Y); the joint is crossed at sqrt(3/4 j_Y T r) (below the arc's
+    # the axis of the normal (Y); the joint is crossed at sqrt(1/2 j_Y T r) (below the arc's
     # own caps sqrt(A r / 2) and (j r^2 / 4)^(1/3)), and both sides coast around it
     from cncc.machines import load_machine
     from cncc.passes.plan import plan_commands
@@ -214,12 +214,12 @@ def test_tangent_joint_speed_is_the_closed_form_curvature_step_cap() -> None:
     law = traj.path
     assert law is not None
     k = int(np.flatnonzero(law.seg == law.seg.max())[0])  # the first phase on the arc
-    expected = math.sqrt(0.75 * j_y * period * r)
+    expected = math.sqrt(0.5 * j_y * period * r)  # blending.TANGENT_STEP_SHARE = 1/2
     assert expected < min(math.sqrt(0.5 * 1500.0 * r), (0.25 * j_y * r * r) ** (1 / 3))
     assert law.v_mm_s[k] == pytest.approx(expected, rel=1e-6)
-    # the coasts: zero path jerk for c = T b / (1 - rho) on both sides, b = 3/4
+    # the coasts: zero path jerk for c = T b / (1 - rho) on both sides, b = 1/2
     turn = expected**3 / (r * r) / j_y
-    coast = period * 0.75 / (1 - turn)
+    coast = period * 0.5 / (1 - turn)
     assert law.j_mm_s3[k] == 0.0 and law.j_mm_s3[k - 1] == 0.0
     assert traj.duration_s[k] == pytest.approx(coast, rel=1e-6)
     assert traj.duration_s[k - 1] == pytest.approx(coast, rel=1e-6)
