@@ -85,9 +85,31 @@ their maximum does.
     the interval takes at least the two braking times (acceleration only: the jerk needs a
     second rest).  This replaces the piece's feed term when larger.
 
-Limitations (it is a bound, not an estimate): the jerk of a centripetal turn, the
-coupling of the axes at a corner and the accelerations at the extremes are dropped, so
-it is loose on short sharp-cornered paths; it is tight on feed-limited long moves.
+(6) Jerk-coupled corners (jerk-aware bound only).  In (5) let ``t*`` be the time of the
+    extreme of ``y = w_c . x`` between the visits ``t_c`` of ``M_c`` and ``t_c+1`` of
+    ``M_c+1``.  Since ``|y'''| <= J_w``, ``y''`` stays within ``J_w |t - t_m|`` of its value
+    ``gamma`` at a middle's visit ``t_m``; so on the half from ``t*`` (``y' = 0``) to ``t_m``
+    the speed away from the extreme is at most ``f(s) = int_0^s min(A_w, J_w (tau - u) -
+    gamma) du`` (``gamma`` signed towards the extreme, ``tau = |t_m - t*|``), and the half
+    covers at most ``E(tau, gamma) = int_0^tau min(V_w, f)`` (closed form,
+    :func:`half_reach_mm`): it takes at least ``tau(D, gamma)``, increasing in ``gamma``.
+    The interval ``[t_c, t_c+1]`` thus takes at least ``max(feed_c, tau(D1, beta_c) +
+    tau(D2, alpha_c))`` with ``beta_c = a(t_c) . w_c`` and ``alpha_c = a(t_c+1) . w_c``.  At a
+    middle between two corners one acceleration ``a`` gives both: ``alpha = a . w_(c-1)``,
+    ``beta = a . w_c``, and with ``|a_i| <= A_i``: ``alpha >= -A_w(c-1)``, ``beta >= -A_w(c)``,
+    ``alpha + beta >= -S``, ``S = sum_i |w_(c-1),i + w_c,i| A_i``.  Cutting ``alpha`` into
+    cells ``[alpha_k, alpha_k+1]``, any motion has in its cell ``tau(D2, alpha) >=
+    tau(D2, alpha_k)`` and ``tau(D1, beta) >= tau(D1, max(-A_w, -S - alpha_k+1))``; the
+    least sum over all cell sequences (dynamic programming along each chain of consecutive
+    corners) bounds the chain's intervals, which are those of (5), from below.  A chain's
+    first ``beta`` and last ``alpha`` are free (``-A_w``).  This is where sharp corners a
+    few millimetres apart cost jerk: braking into one corner and pushing away from the
+    previous one need opposite accelerations at the middle.
+
+Limitations (it is a bound, not an estimate): the jerk of a centripetal turn and the
+accelerations at the extremes are dropped, and (6) couples the corners only through the
+middles' accelerations, so it is loose on short sharp-cornered paths; it is tight on
+feed-limited long moves.
 """
 
 from __future__ import annotations
@@ -381,10 +403,11 @@ def _range_max(values: np.ndarray, lo: np.ndarray, hi: np.ndarray) -> np.ndarray
     return out
 
 
-def _length_bounds(run: _Run, pts: np.ndarray, tol: np.ndarray, lim: _Limits, corners: bool = False
-                   ) -> tuple[float, float]:
+def _length_bounds(run: _Run, pts: np.ndarray, tol: np.ndarray, lim: _Limits, corners: bool = False,
+                   pieces: dict[int, tuple[float, float]] | None = None) -> tuple[float, float]:
     """(2) with (4), and (3) of the docstring; with ``corners``, (5): the chains are forced
-    through the middle of every command and each corner's term replaces its piece's."""
+    through the middle of every command and each corner's term replaces its piece's;
+    ``pieces`` (if given) receives per corner ``c`` its feed term and the piece used."""
     n = len(pts)
     cap_of_cmd = np.array(run.caps)
     cmd = np.array(run.cmd)
@@ -432,8 +455,11 @@ def _length_bounds(run: _Run, pts: np.ndarray, tol: np.ndarray, lim: _Limits, co
         vertex = corner_of.get((i0, i1))
         if vertex is not None and not lim.steps:
             cap_here = float(cap_of_cmd[max(int(cmd[i0]) - 1, 1):min(int(cmd[i1]) + 2, ncmd)].max())
+            feed_piece = piece
             piece = max(piece, _corner_time_s(pts[i0], pts[vertex], pts[i1], float(tol[i0:i1 + 1].max()),
                                               cap_here, lim))
+            if pieces is not None:
+                pieces[int(cmd[vertex])] = (feed_piece, piece)
         cruise += piece
         s_total += length[i1]
     a_path = float(np.linalg.norm(lim.a))
@@ -472,6 +498,134 @@ def _corner_time_s(p_a: np.ndarray, p: np.ndarray, p_b: np.ndarray, d: float, ca
     return _brake_s(d1, v_w, a_w) + _brake_s(d2, v_w, a_w)
 
 
+def half_reach_mm(tau: np.ndarray, gam: np.ndarray, v: np.ndarray, a: np.ndarray, j: np.ndarray) -> np.ndarray:
+    """(6) ``E(tau, gamma)``: the largest distance of a projection ``y`` in time ``tau`` from
+    an extreme (``y' = 0``) to a point where ``y'' = gamma`` (signed towards the extreme),
+    with ``|y'| <= V``, ``|y''| <= A``, ``|y'''| <= J``: ``y''`` stays within ``J |t - t_m|``
+    of its value at the end, so the speed away from the extreme is at most ``f(s) =
+    int_0^s min(A, J (tau - u) - gamma) du`` and ``E = int_0^tau min(V, f)`` (closed form;
+    ``f`` is concave: ``A s`` up to ``u0``, then a parabola)."""
+    c = j * tau - gam
+    u0 = np.clip((c - a) / j, 0.0, tau)
+    g0 = np.minimum(a, c)
+
+    def prim(x: np.ndarray) -> np.ndarray:  # int_0^x f
+        sig = np.maximum(x - u0, 0.0)
+        lin = np.minimum(x, u0)
+        out: np.ndarray = a * lin * lin / 2 + a * u0 * sig + g0 * sig * sig / 2 - j * sig**3 / 6
+        return out
+
+    with np.errstate(invalid="ignore", divide="ignore"):
+        disc = g0 * g0 - 2 * j * (v - a * u0)
+        root = np.sqrt(np.maximum(disc, 0.0))
+        on_line = a * u0 >= v
+        s1 = np.where(on_line, v / a, u0 + (g0 - root) / j)
+        s2 = np.minimum(u0 + (g0 + root) / j, tau)
+        over = (on_line | ((disc > 0) & (g0 > 0))) & (s1 < s2)
+        cut = np.where(over, prim(s2) - prim(s1) - v * (s2 - s1), 0.0)
+    out: np.ndarray = prim(tau) - np.maximum(cut, 0.0)
+    return out
+
+
+def half_leg_s(dist: np.ndarray, gam: np.ndarray, v: np.ndarray, a: np.ndarray, j: np.ndarray) -> np.ndarray:
+    """Least ``tau`` with ``E(tau, gamma) >= dist`` (0 for ``dist <= 0``), by bisection."""
+    dist = np.maximum(dist, 0.0)
+    gam = np.clip(gam, -a, a)
+    hi = np.sqrt(2 * dist / a) + dist / v + 4 * a / j + 2 * np.cbrt(6 * dist / j) + 1e-9
+    for _ in range(60):  # make sure hi is feasible
+        short = half_reach_mm(hi, gam, v, a, j) < dist
+        if not short.any():
+            break
+        hi = np.where(short, 2 * hi, hi)
+    lo = np.zeros_like(dist)
+    for _ in range(44):
+        mid = (lo + hi) / 2
+        ok = half_reach_mm(mid, gam, v, a, j) >= dist
+        hi, lo = np.where(ok, mid, hi), np.where(ok, lo, mid)
+    out: np.ndarray = np.where(dist > 0, lo, 0.0)
+    return out
+
+
+PAIR_CELLS = 24
+
+Corner = tuple[np.ndarray, float, float, float, float, float]
+
+
+def _corner_halves(run: _Run, pts: np.ndarray, tol: np.ndarray, lim: _Limits) -> dict[int, Corner]:
+    """Per corner ``c`` (the end of command ``c``) with an interior extreme along its bisector
+    ``w`` between the middles of ``c`` and ``c + 1`` (as in (5)): ``(w, D1, D2, V_w, A_w, J_w)``."""
+    cap_of_cmd = np.array(run.caps)
+    cmd = np.array(run.cmd)
+    ncmd = cap_of_cmd.size
+    corners: dict[int, Corner] = {}
+    for c, mid in run.mids.items():
+        nxt = run.mids.get(c + 1)
+        if nxt is None:
+            continue
+        vertex = int(np.flatnonzero(cmd == c)[-1])
+        e1, e2 = pts[vertex] - pts[mid], pts[vertex] - pts[nxt]
+        d = float(tol[mid:nxt + 1].max())
+        n1, n2 = float(np.linalg.norm(e1)), float(np.linalg.norm(e2))
+        if n1 <= 2 * d or n2 <= 2 * d:
+            continue
+        w = e1 / n1 + e2 / n2
+        nw = float(np.linalg.norm(w))
+        if nw < 1e-12:
+            continue
+        w /= nw
+        d1, d2 = float(w @ e1) - 2 * d, float(w @ e2) - 2 * d
+        if d1 <= 0 or d2 <= 0:
+            continue
+        aw = np.abs(w)
+        cap_here = float(cap_of_cmd[max(c - 1, 1):min(c + 2, ncmd)].max())
+        v_w = min(float(aw @ np.maximum(lim.v_axis, lim.v_rapid)), cap_here)
+        corners[c] = (w, d1, d2, v_w, float(aw @ lim.a), float(aw @ lim.j))
+    return corners
+
+
+def _corner_chain_s(run: _Run, pts: np.ndarray, tol: np.ndarray, lim: _Limits,
+                    pieces: dict[int, tuple[float, float]]) -> float:
+    """(6): what the jerk adds to (5), see the module docstring; ``pieces[c] = (feed, used)``
+    are corner ``c``'s feed term and the (5) piece the length bound used for it."""
+    corners = _corner_halves(run, pts, tol, lim)
+    chain = sorted(c for c in corners if c in pieces)
+    if not chain:
+        return 0.0
+    n, cells = len(chain), PAIR_CELLS
+    grid = np.linspace(0.0, 1.0, cells + 1)
+    prev_in_chain = np.array([i > 0 and chain[i - 1] == chain[i] - 1 for i in range(n)])
+    next_in_chain = np.append(prev_in_chain[1:], False)
+    w = np.array([corners[c][0] for c in chain])
+    d1, d2, v_w, a_w, j_w = (np.array([corners[c][i] for c in chain]) for i in range(1, 6))
+    # in-half of corner c: beta at M_c, cell k's right end of the previous corner's alpha cells
+    s_sum = np.zeros(n)
+    s_sum[1:] = (np.abs(w[1:] + w[:-1]) @ lim.a)
+    a_prev = np.concatenate([[0.0], a_w[:-1]])
+    alpha_prev = -a_prev[:, None] + 2 * a_prev[:, None] * grid[None, 1:]
+    beta = np.where(prev_in_chain[:, None], np.maximum(-a_w[:, None], -s_sum[:, None] - alpha_prev), -a_w[:, None])
+    # out-half of corner c: alpha at M_(c+1), cell l's left end
+    alpha = np.where(next_in_chain[:, None], -a_w[:, None] + 2 * a_w[:, None] * grid[None, :-1], -a_w[:, None])
+    shape = (n, cells)
+
+    def flat(x: np.ndarray) -> np.ndarray:
+        return np.broadcast_to(x[:, None], shape).ravel()
+
+    t_in = half_leg_s(flat(d1), beta.ravel(), flat(v_w), flat(a_w), flat(j_w)).reshape(shape)
+    t_out = half_leg_s(flat(d2), alpha.ravel(), flat(v_w), flat(a_w), flat(j_w)).reshape(shape)
+    excess = 0.0
+    best = np.zeros(1)
+    for i, c in enumerate(chain):
+        feed, used = pieces[c]
+        tin = t_in[i] if prev_in_chain[i] else t_in[i, :1]
+        tout = t_out[i] if next_in_chain[i] else t_out[i, :1]
+        cost = np.maximum(np.maximum(feed, tin[:, None] + tout[None, :]), used) - used
+        best = (best[:, None] + cost).min(axis=0)
+        if not next_in_chain[i]:  # the chain ends: one state left
+            excess += float(best.min())
+            best = np.zeros(1)
+    return excess
+
+
 def _circle_time_s(group: tuple[int, int, float, float, int, int], tol: np.ndarray, cap_of_cmd: np.ndarray,
                    cmd: np.ndarray, lim: _Limits) -> float:
     """(4): the least time between the visits of a circle group's first and last points."""
@@ -493,25 +647,30 @@ def lower_bounds_s(cmds: Sequence[Command], machine: MachineModel) -> tuple[floa
     lim = _limits(machine)
     runs = _runs(cmds, machine, lim)
     length_terms = np.zeros(len(runs))
+    jerk_terms = np.zeros(len(runs))  # (6): the jerk-aware bound only
     legs: list[tuple[int, int, float, float, float, float]] = []
     for r, run in enumerate(runs):
         pts, tol = np.array(run.pts), np.array(run.tol)
         cruise, t_acc = _length_bounds(run, pts, tol, lim)
         length_terms[r] = cruise if lim.steps else max(cruise, t_acc, _length_bounds(run, pts, tol, lim, True)[0])
+        if not lim.steps:
+            pieces: dict[int, tuple[float, float]] = {}
+            with_corners = _length_bounds(run, pts, tol, lim, True, pieces)[0]
+            jerk_terms[r] = with_corners + _corner_chain_s(run, pts, tol, lim, pieces)
         # (velocity steps: only the feed term)
         if not lim.steps:
             legs.extend((r, *leg) for leg in _chain_legs(run, pts, tol, lim))
     if not legs:
         total = float(length_terms.sum())
-        return total, total
+        return float(np.maximum(length_terms, jerk_terms).sum()), total
     arr = np.array(legs)
     run_i, dir_i = arr[:, 0].astype(int), arr[:, 1].astype(int)
     out = []
-    for jerk in (arr[:, 5], np.full(arr.shape[0], np.inf)):
+    for jerk, extra in ((arr[:, 5], jerk_terms), (np.full(arr.shape[0], np.inf), np.zeros(len(runs)))):
         t = leg_time_s(arr[:, 2], arr[:, 3], arr[:, 4], jerk)
         per = np.zeros((len(runs), DIRECTIONS.shape[0]))
         np.add.at(per, (run_i, dir_i), t)
-        out.append(float(np.maximum(length_terms, per.max(axis=1)).sum()))
+        out.append(float(np.maximum(np.maximum(length_terms, extra), per.max(axis=1)).sum()))
     return out[0], out[1]
 
 

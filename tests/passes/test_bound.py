@@ -147,3 +147,64 @@ def test_corner_term_of_a_square_corner() -> None:
     assert accel_s >= expected * (1 - 1e-9)
     assert jerk_s <= plan_commands(corner, GENERIC, 2).duration_total_s
     assert accel_s <= plan_commands(corner, GENERIC, 1).duration_total_s
+
+
+@pytest.mark.parametrize(("tau", "gamma"), [(0.01, 0.0), (0.03, -1500.0), (0.03, 800.0), (0.06, -400.0), (0.2, 0.0)])
+def test_half_reach_is_an_upper_bound_of_a_linear_programme(tau: float, gamma: float) -> None:
+    # (6): from an extreme (speed 0) to a point where the acceleration towards the extreme is
+    # gamma, |v| <= V, |v'| <= A, |v''| <= J: the largest distance of a discretised motion
+    # (an independent LP; scipy) is below E(tau, gamma) and not far below
+    from scipy.optimize import linprog
+
+    v_max, a_max, j_max, n = 50.0, 1500.0, 50000.0, 300
+    h = tau / n
+    rows, rhs, eq_rows, eq_rhs = [], [], [], []
+    for k in range(n):  # accelerations (v[k+1] - v[k]) / h within A
+        r = np.zeros(n + 1)
+        r[k + 1], r[k] = 1.0, -1.0
+        rows += [r, -r]
+        rhs += [a_max * h] * 2
+    for k in range(1, n):  # jerks within J
+        r = np.zeros(n + 1)
+        r[k + 1], r[k], r[k - 1] = 1.0, -2.0, 1.0
+        rows += [r, -r]
+        rhs += [j_max * h * h] * 2
+    r = np.zeros(n + 1)  # the last acceleration away from the extreme is -gamma
+    r[n], r[n - 1] = 1.0, -1.0
+    eq_rows.append(r)
+    eq_rhs.append(-gamma * h)
+    bounds = [(0.0, 0.0)] + [(-v_max, v_max)] * n
+    weight = np.full(n + 1, h)
+    weight[0] = weight[-1] = h / 2  # the trapezoid rule (the end speed is not zero)
+    res = linprog(-weight, A_ub=np.array(rows), b_ub=np.array(rhs), A_eq=np.array(eq_rows),
+                  b_eq=np.array(eq_rhs), bounds=bounds, method="highs")
+    assert res.status == 0
+    lp = -res.fun
+    e = float(bound.half_reach_mm(np.array([tau]), np.array([gamma]), np.array([v_max]), np.array([a_max]),
+                                  np.array([j_max]))[0])
+    assert e >= lp * (1 - 3e-3) - 1e-9, (e, lp)
+    assert e <= lp * 1.1 + 1e-6, (e, lp)
+
+
+def test_half_leg_inverts_half_reach_and_grows_with_gamma() -> None:
+    dist = np.array([0.3, 0.3, 0.3, 2.0])
+    gam = np.array([-1500.0, 0.0, 1500.0, 0.0])
+    v, a, j = np.full(4, 50.0), np.full(4, 1500.0), np.full(4, 50000.0)
+    t = bound.half_leg_s(dist, gam, v, a, j)
+    assert np.allclose(bound.half_reach_mm(t, gam, v, a, j), dist, rtol=1e-6)
+    assert t[0] < t[1] < t[2]
+    # gamma = -A: no jerk needed at the end, the braking bound sqrt(2 D / A)
+    assert t[0] == pytest.approx(math.sqrt(2 * 0.3 / 1500.0), rel=1e-6)
+
+
+def test_jerk_couples_the_corners_of_a_random_walk(monkeypatch: pytest.MonkeyPatch) -> None:
+    # sharp corners 1 mm apart: at each middle one acceleration must push away from the last
+    # corner and brake towards the next one, which the jerk limit spreads (6); the bound rises
+    # above what (1)-(5) give and stays below -O2
+    cmds = _planner_cmds("random walk", 100)
+    with_jerk, accel_s = bound.lower_bounds_s(cmds, GENERIC)
+    monkeypatch.setattr(bound, "_corner_chain_s", lambda *args: 0.0)
+    without, _ = bound.lower_bounds_s(cmds, GENERIC)
+    assert with_jerk > without * 1.02
+    assert accel_s == pytest.approx(without, rel=1e-12)  # the acceleration-only bound has no (6)
+    assert with_jerk <= plan_commands(cmds, GENERIC, 2).duration_total_s

@@ -139,3 +139,87 @@ def test_planning_bar_on_a_terminal_only_and_not_with_quiet() -> None:
     with planning_bar("planning -O2", PLAN_MIN_ITEMS - 1, False, small) as update:
         update(1)
     assert small.getvalue() == ""
+
+
+def test_coast_time_from_the_step_and_the_turning_jerk() -> None:
+    # b = w^2 |dp''| / (j T) per axis, r = w^3 kappa^2 / j: c = T b / (1 - r), at most T
+    jmax = np.array([50000.0, 50000.0, 30000.0, 1.0, 1.0, 1.0])
+    period = 0.001
+    jump = np.zeros((3, 6))
+    jump[0, 0] = 1.0  # line -> arc of radius 1 along X: |dp''| = 1/mm
+    jump[1, 1] = 0.5
+    w = np.array([4.0, 4.0, 20.0])
+    kappa = np.array([1.0, 0.5, 1.0])
+    c = scurve.coast_times(w, jump, kappa, jmax, period)
+    b0, r0 = 16.0 / 50.0, 64.0 / 50000.0
+    b1, r1 = 8.0 / 50.0, 64.0 * 0.25 / 50000.0
+    assert c[0] == pytest.approx(period * b0 / (1 - r0), rel=1e-12)
+    assert c[1] == pytest.approx(period * b1 / (1 - r1), rel=1e-12)
+    assert c[2] == 0.0  # no curvature jump: no coast
+
+
+def _strict_jerk_codes(cmds: list, machine_name: str = "generic-mill") -> dict[str, int]:  # type: ignore[type-arg]
+    from cncc.diagnostics import DiagnosticSink
+    from cncc.machines import effective_corner_rule, load_machine
+    from cncc.passes.plan import plan_commands
+    from cncc.passes.verify import verify_trajectory
+
+    machine = load_machine(machine_name)
+    traj = plan_commands(cmds, machine, 2)
+    report = verify_trajectory(traj, cmds, machine, DiagnosticSink(), corner_rule=effective_corner_rule(machine, 2),
+                               check_dynamics=True, jerk_limited=True, check_soft_limits=False,
+                               strict_continuity=True, strict_jerk=True)
+    return report.counts
+
+
+@pytest.mark.parametrize("kind", ["raster", "random walk", "0.01 mm", "arcs"])
+def test_curvature_steps_keep_the_averaged_jerk(kind: str) -> None:
+    # blend arcs and tangent arcs: the centripetal acceleration steps at their joints; with the
+    # path's jerk of the neighbouring ramps inside the same period the step alone within j T is
+    # not enough (E0618 under strict_jerk without the coasts)
+    import sys
+    from pathlib import Path
+
+    from cncc.api import compile_commands
+
+    sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "bench"))
+    from pathgen import KINDS
+
+    cmds, _ = compile_commands(KINDS[kind](300), emit="timing")
+    assert "E0618" not in _strict_jerk_codes(list(cmds))
+
+
+def test_contour_example_keeps_the_averaged_jerk() -> None:
+    from pathlib import Path
+
+    from cncc.api import compile_commands
+
+    text = (Path(__file__).resolve().parents[2] / "examples" / "contour.nc").read_text()
+    cmds, _ = compile_commands(text, emit="timing")
+    assert "E0618" not in _strict_jerk_codes(list(cmds))
+
+
+def test_tangent_joint_speed_is_the_closed_form_curvature_step_cap() -> None:
+    # a line into a tangent arc of radius r: the centripetal acceleration steps by v^2 / r on
+    # the axis of the normal (Y); the joint is crossed at sqrt(1/2 j_Y T r) (below the arc's
+    # own caps sqrt(A r / 2) and (j r^2 / 4)^(1/3)), and both sides coast around it
+    from cncc.machines import load_machine
+    from cncc.passes.plan import plan_commands
+    from tests.passes._motion import arc, line
+
+    machine = load_machine("generic-mill")
+    r, j_y, period = 2.0, 50000.0, machine.interpolation_period_s
+    cmds = [line((0, 0), (20, 0), 6000.0), arc((20, 0), (22, 2), (20, 2), 1, 6000.0)]
+    traj = plan_commands(cmds, machine, 2)
+    law = traj.path
+    assert law is not None
+    k = int(np.flatnonzero(law.seg == law.seg.max())[0])  # the first phase on the arc
+    expected = math.sqrt(0.5 * j_y * period * r)  # blending.TANGENT_STEP_SHARE = 1/2
+    assert expected < min(math.sqrt(0.5 * 1500.0 * r), (0.25 * j_y * r * r) ** (1 / 3))
+    assert law.v_mm_s[k] == pytest.approx(expected, rel=1e-6)
+    # the coasts: zero path jerk for c = T b / (1 - rho) on both sides, b = 1/2
+    turn = expected**3 / (r * r) / j_y
+    coast = period * 0.5 / (1 - turn)
+    assert law.j_mm_s3[k] == 0.0 and law.j_mm_s3[k - 1] == 0.0
+    assert traj.duration_s[k] == pytest.approx(coast, rel=1e-6)
+    assert traj.duration_s[k - 1] == pytest.approx(coast, rel=1e-6)

@@ -68,6 +68,7 @@ def plan_blended(run: PathRun, machine: MachineModel, limits: AxisLimits,
             if not (stop & rounded).any():
                 seg.vvert[1:-1] = np.minimum(seg.vvert[1:-1], np.where(stop[seg.vorigin[1:-1]], 0.0, caps))
                 return [(seg, profile(seg))]
+        del seg, caps, speeds  # the run is rounded again with its stops: not both at once in memory
     return [(part, profile(part)) for part in rounded_parts(run, stop, machine, limits, whole)]
 
 

@@ -218,15 +218,55 @@ def step_accel_caps(seg: Segments, jmax_mm_s3: FloatArray, period_s: float) -> F
     return out
 
 
+def curvature_jumps(seg: Segments) -> tuple[FloatArray, FloatArray]:
+    """Per vertex ``m = 0..k``: the per-axis jump of ``p''(s)`` (the centripetal acceleration
+    steps by ``v^2`` times it, ``(k + 1, m)``, zero at the ends) and the largest ``|kappa|`` of
+    the two pieces there (``(k + 1,)``, 1/mm)."""
+    k = seg.count
+    m = seg.p0.shape[1]
+    jump = np.zeros((k + 1, m))
+    kap = np.zeros(k + 1)
+    if seg.geo is None or k < 2:
+        return jump, kap
+    geo = seg.geo
+    rows = np.arange(k)
+    _, _, c0, _ = geo.derivatives(rows, np.zeros(k))
+    _, _, c1, _ = geo.derivatives(rows, seg.length)
+    jump[1:-1] = np.abs(c0[1:] - c1[:-1])
+    kappa = np.abs(geo.kappa)
+    kap[1:-1] = np.maximum(kappa[1:], kappa[:-1])
+    kap[0], kap[-1] = kappa[0], kappa[-1]
+    return jump, kap
+
+
+def coast_times(w: FloatArray, jump: FloatArray, kappa: FloatArray, jmax_mm_s3: FloatArray,
+                period_s: float) -> FloatArray:
+    """Coast (zero path jerk) on each side of a block boundary crossed at ``w`` where the
+    curvature jumps, so that the controller's average over one period ``T`` sees the
+    centripetal step ``b_i = w^2 jump_i / (j_i T)`` plus at most ``(1 - b_i) j_i T`` of the
+    path's own jerk: outside the coasts the axis jerk is within ``j_i``; during them only the
+    circle's turning jerk ``r_i = w^3 kappa^2 / j_i`` acts, so ``c = T max_i b_i / (1 - r_i)``
+    (at most ``T``)."""
+    step = (w * w)[:, None] * jump / (jmax_mm_s3[None, :] * period_s)
+    turn = np.minimum((w**3 * kappa**2)[:, None] / jmax_mm_s3[None, :], 0.5)  # (the caps keep it <= 1/4)
+    need = np.where(jump > 1e-12, step / (1.0 - turn), 0.0).max(axis=1, initial=0.0)
+    out: FloatArray = period_s * np.minimum(1.0, need)
+    return out
+
+
 def scurve_profile(seg: Segments, raw_acap: FloatArray | None = None, jmax_mm_s3: FloatArray | None = None,
                    period_s: float = 0.0) -> Phases:
     """The -O2 profile of one part (rest to rest); see the module docstring and :func:`block_caps`.
 
     With the per-axis jerk limits and the interpolation period, a block's acceleration is
     also capped at its interior vertices by :func:`step_accel_caps` (the acceleration
-    changes direction there; at block boundaries it is zero)."""
+    changes direction there; at block boundaries it is zero), and a block boundary where
+    the curvature jumps gets a coast on both sides (:func:`coast_times`)."""
     starts = blocks(seg)
     length, vcap, acap, jcap, wcap = block_caps(seg, starts, raw_acap)
+    nb = length.size
+    bound = np.append(starts, seg.count)  # vertex of each block boundary
+    coast = np.zeros(nb + 1)
     if jmax_mm_s3 is not None and period_s > 0 and seg.count > 1:
         caps = step_accel_caps(seg, jmax_mm_s3, period_s)  # vertex m = 1..k-1 at index m - 1
         owner = np.searchsorted(starts, np.arange(1, seg.count), side="right") - 1
@@ -234,37 +274,60 @@ def scurve_profile(seg: Segments, raw_acap: FloatArray | None = None, jmax_mm_s3
         vertex_cap = np.full(starts.size, np.inf)
         np.minimum.at(vertex_cap, owner[inside], caps[inside])
         acap = np.minimum(acap, vertex_cap)
-    w = boundary_speeds(length, vcap, acap, jcap, wcap)
+        jump, kap = curvature_jumps(seg)
+        jump_b, kap_b = jump[bound], kap[bound]
+        has = jump_b.max(axis=1, initial=0.0) > 1e-12
+        if has.any():
+            # the coasts must fit the blocks either side: w c(w) <= half the shorter one
+            # (c(w) <= T min(1, 2 b), b = w^2 rel): w <= max(len / 2T, (len / 4 T rel)^(1/3))
+            rel = (jump_b / (jmax_mm_s3[None, :] * period_s)).max(axis=1, initial=0.0)
+            near = np.minimum(np.concatenate([[np.inf], length]), np.concatenate([length, [np.inf]]))
+            with np.errstate(divide="ignore", invalid="ignore"):
+                fit = np.maximum(near / (2 * period_s), np.cbrt(near / (4 * period_s * np.maximum(rel, 1e-300))))
+            wcap = np.where(has, np.minimum(wcap, fit), wcap)
+            # reserve the coasts at the boundary's highest possible speed (w c(w) grows with w)
+            top = np.minimum(wcap, np.minimum(np.concatenate([[np.inf], vcap]), np.concatenate([vcap, [np.inf]])))
+            top = np.where(np.isfinite(top), top, 0.0)
+            res = top * coast_times(top, jump_b, kap_b, jmax_mm_s3, period_s)
+            w = boundary_speeds(np.maximum(length - res[:-1] - res[1:], 0.0), vcap, acap, jcap, wcap)
+            coast = coast_times(w, jump_b, kap_b, jmax_mm_s3, period_s)
+    if not coast.any():
+        w = boundary_speeds(length, vcap, acap, jcap, wcap)
     vs, ve = w[:-1], w[1:]
-    vp = _peak(vs, ve, length, vcap, acap, jcap)
+    c_s, c_e = coast[:-1], coast[1:]
+    avail = np.maximum(length - vs * c_s - ve * c_e, 0.0)
+    vp = _peak(vs, ve, avail, vcap, acap, jcap)
     d_up, a_up, j_up = _ramp_phases(vs, vp, acap, jcap)
     d_dn, a_dn, j_dn = _ramp_phases(vp, ve, acap, jcap)
-    cruise_len = np.maximum(length - ramp_distance(vs, vp, acap, jcap) - ramp_distance(vp, ve, acap, jcap), 0.0)
+    cruise_len = np.maximum(avail - ramp_distance(vs, vp, acap, jcap) - ramp_distance(vp, ve, acap, jcap), 0.0)
     t_cru = np.where(vp > 0, cruise_len / np.maximum(vp, 1e-300), 0.0)
-    nb = length.size
-    dur = np.concatenate([d_up, t_cru[:, None], d_dn], axis=1)  # (b, 7)
-    acc = np.concatenate([a_up, np.zeros((nb, 1)), a_dn], axis=1)
-    jerk = np.concatenate([j_up, np.zeros((nb, 1)), j_dn], axis=1)
+    z = np.zeros((nb, 1))
+    dur = np.concatenate([c_s[:, None], d_up, t_cru[:, None], d_dn, c_e[:, None]], axis=1)  # (b, 9)
+    acc = np.concatenate([z, a_up, z, a_dn, z], axis=1)
+    jerk = np.concatenate([z, j_up, z, j_dn, z], axis=1)
     # speeds at the phase starts from the ramps' closed forms
-    v_ph = np.empty((nb, 7))
+    v_ph = np.empty((nb, 9))
     v_ph[:, 0] = vs
-    for c in range(1, 7):
+    for c in range(1, 9):
         v_ph[:, c] = v_ph[:, c - 1] + acc[:, c - 1] * dur[:, c - 1] + jerk[:, c - 1] * dur[:, c - 1] ** 2 / 2
-    v_ph[:, 3] = vp
+    v_ph[:, 1] = vs
     v_ph[:, 4] = vp
+    v_ph[:, 5] = vp
+    v_ph[:, 8] = ve
     ds = v_ph * dur + acc * dur**2 / 2 + jerk * dur**3 / 6
     s_start = seg.s0[starts]
     s_ph = s_start[:, None] + np.concatenate([np.zeros((nb, 1)), np.cumsum(ds, axis=1)[:, :-1]], axis=1)
     cruise_lim = _block_limit(seg, starts, vcap)
-    lim = np.full((nb, 7), int(Limit.JERK), np.int8)
-    lim[:, 1] = lim[:, 5] = int(Limit.ACCEL)
-    lim[:, 3] = cruise_lim
+    lim = np.full((nb, 9), int(Limit.JERK), np.int8)
+    lim[:, 2] = lim[:, 6] = int(Limit.ACCEL)
+    lim[:, 4] = cruise_lim
+    lim[:, 0] = lim[:, 8] = int(Limit.CORNER)
     flat = dur.reshape(-1)
     keep = flat > 1e-13
     dur_k = flat[keep]
     t0 = np.concatenate([[0.0], np.cumsum(dur_k)[:-1]])
-    first = np.repeat(starts, 7)[keep]
-    last = np.repeat(np.append(starts[1:], seg.count) - 1, 7)[keep]
+    first = np.repeat(starts, 9)[keep]
+    last = np.repeat(np.append(starts[1:], seg.count) - 1, 9)[keep]
     return Phases(t0, dur_k, s_ph.reshape(-1)[keep], v_ph.reshape(-1)[keep], acc.reshape(-1)[keep],
                   jerk.reshape(-1)[keep], lim.reshape(-1)[keep], segments=(first, last))
 
