@@ -47,23 +47,38 @@ def _bounds(rel_t: I64, e: int) -> tuple[I64, I64]:
     return rel_t - np.minimum(gap // 2, e), rel_t
 
 
+_K = np.arange(1, 2 * MAX_WINDOW + 3, dtype=np.int64)  # windows double up to below 2 MAX_WINDOW
+_TRI = _K * (_K - 1) // 2
+
+
 def _longest(minp: I64, maxp: I64, add: int, outer: tuple[int, int]) -> tuple[int, int, int, int]:
     """Longest prefix one ``(interval, count, add)`` reproduces, starting from the interval range ``outer``.
 
     Returns ``(count, interval, lo, hi)`` where ``lo, hi`` is the interval range after the
     first point that fails (``count == len`` when none does).
     """
-    k = np.arange(1, minp.shape[0] + 1, dtype=np.int64)
-    q = add * (k * (k - 1) // 2)
-    low = -((q - minp) // k)  # ceil((minp - q) / k)
+    n = minp.shape[0]
+    k = _K[:n]
+    if add:
+        q = _TRI[:n] * add
+        low = np.subtract(q, minp)
+        high = np.subtract(maxp, q)
+    else:
+        low = np.negative(minp)
+        high = maxp.copy()
+    np.floor_divide(low, k, out=low)
+    np.negative(low, out=low)  # ceil((minp - q) / k)
     if add < 0:  # the last interval, interval + add (count - 1), stays >= 1
-        low = np.maximum(low, 1 - add * (k - 1))
-    lo = np.maximum.accumulate(np.maximum(low, outer[0]))
-    hi = np.minimum.accumulate(np.minimum((maxp - q) // k, outer[1]))
+        np.maximum(low, 1 + add * (k - 1), out=low)
+    np.maximum(low, outer[0], out=low)
+    lo = np.maximum.accumulate(low)
+    np.floor_divide(high, k, out=high)
+    np.minimum(high, outer[1], out=high)
+    hi = np.minimum.accumulate(high)
     bad = lo > hi
-    c = int(np.argmax(bad)) if bad.any() else int(minp.shape[0])
-    if c == minp.shape[0]:
-        return c, int(hi[-1]), 0, 0
+    c = int(np.argmax(bad))
+    if c == 0 and not bad[0]:
+        return n, int(hi[-1]), 0, 0
     return c, int(hi[c - 1]) if c else 0, int(lo[c]), int(hi[c])
 
 
