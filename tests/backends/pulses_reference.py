@@ -1,8 +1,8 @@
 """The exact step-time algorithm as it was before the vectorised fast path (session
 2026-12-02 c), frozen here as the oracle of tests/backends/test_pulses_fast.py.
 
-A verbatim copy of ``roots.py``, ``curved.py`` and the step-solving part of ``solve.py``
-at 77dee82 (imports merged).  Do not "improve" it: its job is to stay what the fast path
+A verbatim copy of ``roots.py``, ``curved.py``, the step-solving part of ``solve.py`` and
+the compressor of ``queue.py`` at 77dee82 (imports merged).  Do not "improve" it: its job is to stay what the fast path
 is compared with.
 """
 
@@ -484,3 +484,112 @@ def _distances(spec: AxisPulseSpec, counts: I64, direction: I8, na: I64, pa: F64
     s_new = np.repeat(na, counts) + np.repeat(direction.astype(np.int64), counts) * off
     dir_steps = np.repeat(direction, counts)
     return (spec.boundary_mm(s_new, dir_steps) - np.repeat(pa, counts)) * dir_steps
+
+
+# ---- queue.py (the compressor)
+MAX_WINDOW = 0xFFFF
+MIN_WINDOW = 32
+QUADRATIC_DEV = 11  # Klipper: the largest deviation between two quadratic sequences, in units of e / count^2
+ADD_MIN, ADD_MAX = -0x8000, 0x7FFF  # 'add' is a signed 16-bit field, as in Klipper
+LONG_ENOUGH = 0x200  # a sequence this long is not improved by another 'add'
+
+
+def _cdiv(n: int, d: int) -> int:
+    return -((-n) // d)
+
+
+def _bounds(rel_t: I64, e: int) -> tuple[I64, I64]:
+    """Allowed reproduced times: ``[t - min(e, gap/2), t]`` (Klipper's ``minmax_point``)."""
+    gap = np.diff(rel_t, prepend=0)
+    return rel_t - np.minimum(gap // 2, e), rel_t
+
+
+def _longest(minp: I64, maxp: I64, add: int, outer: tuple[int, int]) -> tuple[int, int, int, int]:
+    """Longest prefix one ``(interval, count, add)`` reproduces, starting from the interval range ``outer``.
+
+    Returns ``(count, interval, lo, hi)`` where ``lo, hi`` is the interval range after the
+    first point that fails (``count == len`` when none does).
+    """
+    k = np.arange(1, minp.shape[0] + 1, dtype=np.int64)
+    q = add * (k * (k - 1) // 2)
+    low = -((q - minp) // k)  # ceil((minp - q) / k)
+    if add < 0:  # the last interval, interval + add (count - 1), stays >= 1
+        low = np.maximum(low, 1 - add * (k - 1))
+    lo = np.maximum.accumulate(np.maximum(low, outer[0]))
+    hi = np.minimum.accumulate(np.minimum((maxp - q) // k, outer[1]))
+    bad = lo > hi
+    c = int(np.argmax(bad)) if bad.any() else int(minp.shape[0])
+    if c == minp.shape[0]:
+        return c, int(hi[-1]), 0, 0
+    return c, int(hi[c - 1]) if c else 0, int(lo[c]), int(hi[c])
+
+
+def bisect_add(minp: I64, maxp: I64, e: int) -> tuple[int, int, int]:
+    """One ``(interval, count, add)`` covering a prefix of the points: Klipper's ``compress_bisect_add``.
+
+    Tries ``add = 0`` first, then bisects the range of ``add`` values that could still
+    extend the sequence, using which side of its window the first failing point falls on.
+    """
+    outer_min, outer_max = max(int(minp[0]), 1), int(maxp[0])
+    add, min_add, max_add = 0, ADD_MIN, ADD_MAX
+    best = (0, 1, 1, -(1 << 62))  # interval, count, add, reach
+    zero = (0, 0)
+    n = minp.shape[0]
+    while True:
+        count, interval, next_lo, next_hi = _longest(minp, maxp, add, (outer_min, outer_max))
+        if count == n:
+            return interval, count, add
+        reach = add * (count * (count - 1) // 2) + interval * count
+        if reach > best[3] or (reach == best[3] and interval > best[0]):
+            best = (interval, count, add, reach)
+            if add == 0:
+                zero = (interval, count)
+            if count > LONG_ENOUGH:
+                break
+        nc = count + 1
+        nf = nc * (nc - 1) // 2
+        point_min, point_max = int(minp[count]), int(maxp[count])
+        if add * nf + interval * nc < point_min:
+            min_add, outer_max = add + 1, next_hi
+        else:
+            max_add, outer_min = add - 1, next_lo
+        if count > 1:
+            err = e * QUADRATIC_DEV // (count * count)
+            min_add, max_add = max(min_add, add - err), min(max_add, add + err)
+        min_add = max(min_add, _cdiv(point_min - outer_max * nc, nf))
+        max_add = min(max_add, (point_max - outer_min * nc) // nf)
+        if min_add > max_add or count == 0:
+            break
+        add = max_add - (max_add - min_add) // 4
+    if zero[1] + zero[1] // 16 >= best[1]:
+        return zero[0], zero[1], 0
+    return best[0], best[1], best[2]
+
+
+def compress_run(t: I64, last: int, e: int, final: bool) -> tuple[list[tuple[int, int, int]], int, int]:
+    """Commands covering a prefix of ``t`` (one direction); returns (commands, new last, steps used).
+
+    When not ``final``, a command whose run reaches the end of ``t`` is left for later
+    (more steps may extend it).  The points are examined in growing windows (up to
+    :data:`MAX_WINDOW`, Klipper's limit), so a short command does not cost a long scan.
+    """
+    cmds: list[tuple[int, int, int]] = []
+    i = 0
+    n = t.shape[0]
+    window = MIN_WINDOW
+    while i < n:
+        while True:
+            minp, maxp = _bounds(t[i:i + window] - last, e)
+            iv, c, add = bisect_add(minp, maxp, e)
+            if c < minp.shape[0] or i + window >= n or window >= MAX_WINDOW:
+                break
+            window *= 2
+        if not final and i + c >= n:
+            break
+        if c == 0:  # cannot happen for increasing times; guard against a stall
+            iv, c, add = max(int(t[i]) - last, 1), 1, 0
+        cmds.append((iv, c, add))
+        last += c * iv + add * (c * (c - 1) // 2)
+        i += c
+        window = max(MIN_WINDOW, min(MAX_WINDOW, 2 * c))
+    return cmds, last, i

@@ -101,3 +101,36 @@ def test_fast_path_equals_the_previous_exact_algorithm(name: str, text: str, lev
 def test_fast_path_equals_the_previous_exact_algorithm_on_straight_s_curves() -> None:
     traj = s_curve(100.0, 1000.0, 20000.0, 0.05, sign=-1.0)
     assert _compare(traj, 4096) > 1000
+
+
+def _trains(seed: int) -> list[np.ndarray]:
+    """Step-time trains of every shape the compressor meets: random gaps, accelerating and
+    decelerating runs (intervals shrinking to a few ns, where the last-interval >= 1 rule of a
+    negative ``add`` binds), constant rate with jitter, a sine-modulated rate."""
+    rng = np.random.default_rng(seed)
+    out = []
+    for r in range(24):
+        n = int(rng.integers(2, 2500))
+        k = np.arange(n)
+        kind = r % 4
+        if kind == 0:
+            gaps = rng.integers(1, 200_000, n)
+        elif kind == 1:
+            gaps = np.maximum(int(rng.integers(2_000, 60_000)) - int(rng.integers(1, 40)) * k, 1)
+        elif kind == 2:
+            gaps = np.full(n, int(rng.integers(3, 30_000))) + rng.integers(0, 7, n)
+        else:
+            gaps = np.maximum((20_000 + 15_000 * np.sin(k / 40)).astype(np.int64), 1)
+        out.append(np.cumsum(gaps).astype(np.int64) + int(rng.integers(1, 500)))
+    return out
+
+
+@pytest.mark.parametrize("e", [1, 1000, 25_000])
+def test_queue_compressor_equals_the_previous_one(e: int) -> None:
+    from cncc.backends.pulses.queue import compress_run
+
+    for seed in range(3):
+        for r, t in enumerate(_trains(seed)):
+            final = r % 3 != 0
+            last = int(t[0]) - 1 - r
+            assert compress_run(t, last, e, final) == ref.compress_run(t, last, e, final), (seed, r)
