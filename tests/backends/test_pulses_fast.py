@@ -134,3 +134,16 @@ def test_queue_compressor_equals_the_previous_one(e: int) -> None:
             final = r % 3 != 0
             last = int(t[0]) - 1 - r
             assert compress_run(t, last, e, final) == ref.compress_run(t, last, e, final), (seed, r)
+
+
+def test_blocks_of_phases_give_the_whole_trajectory_result(monkeypatch: pytest.MonkeyPatch) -> None:
+    from cncc.backends.pulses.blocks import blockwise
+    from cncc.ir.trajectory import axis_bounds, position_bounds
+
+    traj = _planned(_arcs_and_helices(), 2)
+    assert traj.phase_count > 50
+    for fn in (position_bounds, axis_bounds):
+        for whole, blocked in zip(fn(traj), blockwise(fn, traj, size=7), strict=True):
+            np.testing.assert_array_equal(whole, blocked)
+    monkeypatch.setattr(solve, "BLOCK_PHASES", 7)  # segment() a few phases at a time
+    assert _compare(traj, 1 << 12) > 10_000

@@ -27,6 +27,7 @@ from dataclasses import dataclass
 import numpy as np
 import numpy.typing as npt
 
+from cncc.backends.pulses.blocks import BLOCK_PHASES, phase_slice
 from cncc.backends.pulses.curved import (
     MAX_SEGMENT_SWEEP_RAD,
     all_positions,
@@ -124,7 +125,27 @@ def speed_max(v0: F64, a0: F64, j: F64, t: F64) -> F64:
 
 
 def segment(traj: Trajectory, steps_per_mm: F64, budget: int) -> Segments:
-    """Cut phases so that no segment holds more than about ``budget`` steps."""
+    """Cut phases so that no segment holds more than about ``budget`` steps (a block of
+    :data:`.blocks.BLOCK_PHASES` phases at a time, so the temporaries stay small)."""
+    n = traj.phase_count
+    parts = [_segment_block(phase_slice(traj, a, min(a + BLOCK_PHASES, n)), a, steps_per_mm, budget)
+             for a in range(0, n, BLOCK_PHASES)]
+    if n:
+        end, _, _ = traj.end_state(n - 1)
+        values = np.vstack([*(p[4] for p in parts), end[None, :]])
+    else:
+        values = np.zeros((1, len(traj.axes)))
+    if not parts:
+        z = np.zeros(0)
+        return Segments(np.zeros(0, np.int64), z, z.copy(), z.copy(), values, np.zeros(0, bool))
+    phase, ta, tb, est, _, bent = (np.concatenate([p[k] for p in parts]) for k in range(6))
+    return Segments(phase, ta, tb, est, values, bent)
+
+
+def _segment_block(traj: Trajectory, offset: int, steps_per_mm: F64, budget: int
+                   ) -> tuple[I64, F64, F64, F64, F64, npt.NDArray[np.bool_]]:
+    """:func:`segment` of the phases of ``traj`` (a slice starting at phase ``offset``): phase,
+    start, end, estimated steps, start positions and curvedness of each segment."""
     n = traj.phase_count
     dur = traj.duration_s
     bent = traj.curved
@@ -152,12 +173,7 @@ def segment(traj: Trajectory, steps_per_mm: F64, budget: int) -> Segments:
         cb = np.flatnonzero(bent[k])
         values[cb] = all_positions(traj, k[cb], ta[cb])
     values = np.where((sub == 0)[:, None], traj.p0_mm[k], values)
-    if n:
-        end, _, _ = traj.end_state(n - 1)
-        values = np.vstack([values, end[None, :]])
-    else:
-        values = np.zeros((1, len(traj.axes)))
-    return Segments(phase, ta, tb, (est / nsub)[phase], values, bent[phase])
+    return phase + offset, ta, tb, (est / nsub)[phase], values, bent[phase]
 
 
 def windows(seg: Segments, budget: int) -> list[tuple[int, int]]:
