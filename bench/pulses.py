@@ -16,14 +16,25 @@ on the N-segment raster of ``bench/pathgen.py`` (generic-mill with Z soft max 10
 the program's clearance moves go to Z5): steps per CPU second of the child (user + system,
 ``os.wait4``), its peak RSS, and the steps counted in the written queue (goal >= 1 M
 steps/s whole process, streamed).
+
+``--before TREE`` (e.g. ``/work/before3``) runs the same whole-process commands from that
+tree too, in the same run, on three programs: the raster (``--whole`` segments, default
+100k), an arc contour (``--arcs``, default 1k arcs) and a random walk (``--walk``, default
+2k segments).  Per program and tree it prints the steps, the CPU s and peak RSS of
+``--emit=pulses`` (queue and VCD), and the pulse stage alone: that CPU minus the CPU of
+``--emit=timing`` on the same file (planning, verify and the report), as steps per second.
+
+    python bench/pulses.py --before /work/before3 [--whole 100000 --arcs 1000 --walk 2000]
 """
 
 from __future__ import annotations
 
 import argparse
+import contextlib
 import os
 import time
 import tracemalloc
+from pathlib import Path
 
 import numpy as np
 
@@ -108,7 +119,6 @@ soft_max_mm = 10.0
 def whole_process(n: int, mode: str, limit_s: float = 1800.0) -> None:
     import sys
     import tempfile
-    from pathlib import Path
 
     here = Path(__file__).resolve().parent
     sys.path.insert(0, str(here))
@@ -137,6 +147,84 @@ def whole_process(n: int, mode: str, limit_s: float = 1800.0) -> None:
               f"(goal >= 1), peak RSS {r.rss_mb:.0f} MB")
 
 
+def _child(tree: Path, src: Path, args: list[str], limit_s: float) -> tuple[float, float, int]:
+    """(CPU s, peak RSS MB, exit code; -1 killed) of ``cncc SRC ARGS`` run from ``tree``."""
+    import signal
+    import subprocess
+    import sys
+    import tempfile
+
+    env = dict(os.environ, PYTHONPATH=str(tree))
+    rss_file = src.with_suffix(".rss")
+    timer = ["/usr/bin/time", "-f", "%M", "-o", str(rss_file)] if os.path.exists("/usr/bin/time") else []
+    with tempfile.TemporaryFile() as err:
+        proc = subprocess.Popen([*timer, sys.executable, "-m", "cncc", str(src), *args], stdout=subprocess.DEVNULL,
+                                stderr=err, env=env, start_new_session=True, cwd=str(tree))
+        start = time.monotonic()
+        while True:
+            pid, status, usage = os.wait4(proc.pid, os.WNOHANG)
+            if pid:
+                break
+            if time.monotonic() - start > limit_s:
+                os.killpg(proc.pid, signal.SIGKILL)
+                pid, status, usage = os.wait4(proc.pid, 0)
+                return limit_s, float("nan"), -1
+            time.sleep(0.02)
+    rss = usage.ru_maxrss / 1024
+    if timer:
+        with contextlib.suppress(OSError, ValueError, IndexError):
+            rss = int(rss_file.read_text().split()[-1]) / 1024
+    return usage.ru_utime + usage.ru_stime, rss, os.waitstatus_to_exitcode(status)
+
+
+def _queue_steps(path: Path) -> int:
+    steps = 0
+    with path.open() as fh:
+        for row in fh:
+            if row.startswith("queue_step"):
+                steps += int(row.split()[3])
+    return steps
+
+
+def before_after(before: str, sizes: dict[str, int], limit_s: float) -> None:
+    """Before/after of the whole process on each program (see the module docstring)."""
+    import sys
+    import tempfile
+    here = Path(__file__).resolve().parent
+    sys.path.insert(0, str(here))
+    from pathgen import KINDS
+
+    trees = (("before", Path(before).resolve()), ("after", here.parent))
+    load = os.getloadavg()
+    print(f"--emit=pulses whole process, before = {before}, after = {here.parent}; -O2, generic-mill "
+          f"(Z soft max 10 mm); load {load[0]:.1f}/{load[1]:.1f} on {os.cpu_count()} cores")
+    print(f"{'program':<22} {'tree':<7} {'steps':>12} {'fmt':>6} {'CPU s':>8} {'RSS MB':>7} {'M steps/s':>10} "
+          f"{'timing CPU s':>13} {'pulse stage M steps/s':>22}")
+    with tempfile.TemporaryDirectory() as tmp:
+        mill = Path(tmp) / "bench-mill.toml"
+        mill.write_text(BENCH_MILL)
+        for kind, n in sizes.items():
+            src = Path(tmp) / f"{kind.replace(' ', '_')}_{n}.nc"
+            src.write_text(KINDS[kind](n))
+            for label, tree in trees:
+                t_cpu, _, t_rc = _child(tree, src, ["-m", str(mill), "--emit=timing", "--report-format=json",
+                                                    "-o", str(src.with_suffix(".json"))], limit_s)
+                steps = 0
+                for fmt in ("queue", "vcd"):
+                    out = src.with_suffix(f".{label}.{fmt}")
+                    cpu, rss, rc = _child(tree, src, ["-m", str(mill), "--emit=pulses", f"--pulse-format={fmt}",
+                                                      "-o", str(out)], limit_s)
+                    if rc != 0:
+                        print(f"{kind + f' {n:,}':<22} {label:<7} {'':>12} {fmt:>6}  exit {rc}")
+                        continue
+                    if fmt == "queue":
+                        steps = _queue_steps(out)
+                    stage = cpu - t_cpu if t_rc == 0 else float("nan")
+                    print(f"{kind + f' {n:,}':<22} {label:<7} {steps:>12,} {fmt:>6} {cpu:8.2f} {rss:7.0f} "
+                          f"{steps / cpu / 1e6:10.2f} {t_cpu:13.2f} {steps / max(stage, 1e-9) / 1e6:22.2f}")
+                    out.unlink(missing_ok=True)
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--steps", type=int, default=100_000_000)
@@ -144,7 +232,15 @@ def main() -> None:
     ap.add_argument("--chunk", type=int, default=DEFAULT_CHUNK_STEPS)
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--whole", type=int, default=0, help="whole process on the N-segment raster instead")
+    ap.add_argument("--before", default=None, help="another cncc tree: before/after on raster, arcs, random walk")
+    ap.add_argument("--arcs", type=int, default=1000, help="--before: arcs of the arc contour")
+    ap.add_argument("--walk", type=int, default=2000, help="--before: segments of the random walk")
+    ap.add_argument("--limit", type=float, default=900.0, help="--before: seconds before a child is killed")
     args = ap.parse_args()
+    if args.before:
+        before_after(args.before, {"raster": args.whole or 100_000, "arcs": args.arcs, "random walk": args.walk},
+                     args.limit)
+        return
     if args.whole:
         whole_process(args.whole, args.mode)
         return

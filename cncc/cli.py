@@ -24,7 +24,7 @@ def _parser() -> argparse.ArgumentParser:
     p.add_argument("inputs", nargs="*", metavar="file", help="program files ('-' for standard input)")
     p.add_argument("-x", "--dialect", help="input dialect (default: guessed from the file; -v says which)")
     p.add_argument("-v", "--verbose", action="store_true", help="notes on what was chosen (the guessed dialect)")
-    p.add_argument("-q", "--quiet", action="store_true", help="no progress bars on long planning runs")
+    p.add_argument("-q", "--quiet", action="store_true", help="no progress bars on long planning and pulse runs")
     p.add_argument("-t", "--target", help="target dialect for --emit=gcode (default: the input dialect)")
     p.add_argument("-m", "--machine", help="machine model name or TOML file (default: generic-mill)")
     p.add_argument("--emit", default="canon", help="canon | ir | gcode | timing | pulses | none (default: canon)")

@@ -801,6 +801,7 @@ def pulse_backend(cmds: Iterator[Command], machine: MachineModel, opts: Options,
     import io
 
     from cncc.backends.pulses import FORMATS, MODES, generate_pulses, reversal_pauses, write_pulses
+    from cncc.backends.pulses import progress as pulse_progress
     from cncc.backends.timing import event_pauses
 
     fmt, to_stdout = opts.pulse_format, opts.output in (None, "-")
@@ -813,8 +814,12 @@ def pulse_backend(cmds: Iterator[Command], machine: MachineModel, opts: Options,
                               soft_limits=opts.offsets_file is not None, quiet=opts.quiet, manager=manager,
                               spec=opts.passes)
     pauses = event_pauses(cmd_list, traj.cmd_index, machine)  # the timing report's event times
-    chunks = generate_pulses(traj, machine, mode=opts.pulse_mode, spans=[c.span for c in cmd_list], sink=sink,
-                             pauses=pauses, reversals=reversal_pauses(traj, machine, mode=opts.pulse_mode))
+    reversals = reversal_pauses(traj, machine, mode=opts.pulse_mode)
+    chunks = pulse_progress.track(
+        generate_pulses(traj, machine, mode=opts.pulse_mode, spans=[c.span for c in cmd_list], sink=sink,
+                        pauses=pauses, reversals=reversals),
+        round(traj.duration_total_s * 1e9) + sum(ns for _, ns in pauses) + reversals.total_ns,
+        pulse_progress.estimated_steps(traj, machine), quiet=opts.quiet)
     if to_stdout:
         buf = io.StringIO()
         write_pulses(chunks, fmt, buf)

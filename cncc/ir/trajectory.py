@@ -268,6 +268,23 @@ class Trajectory:
         """Exact position, velocity, acceleration, jerk at the end of every phase, ``(n, m)`` each."""
         return self.states(np.arange(self.phase_count), self.duration_s)
 
+    def end_positions(self) -> FloatArray:
+        """Exact position at the end of every phase, ``(n, m)``: the first of :meth:`end_states`,
+        without the derivatives (arcs: the geometry's position part only)."""
+        dur = self.duration_s
+        p: FloatArray = self.p0_mm + dur[:, None] * (self.v0_mm_s + dur[:, None] * (
+            self.a0_mm_s2 / 2 + dur[:, None] * self.j_mm_s3 / 6))
+        bent = np.flatnonzero(self.curved)
+        if bent.size and self.path is not None:
+            law, geo = self.path, self.path.geometry
+            s, _, _, _ = law.s_at(bent, dur[bent])
+            g = law.seg[bent]
+            th = geo.theta0[g] + geo.kappa[g] * s
+            nrm = np.cos(th)[:, None] * geo.e1[g] + np.sin(th)[:, None] * geo.e2[g]
+            rho = geo.r0[g][:, None] + geo.dr[g][:, None] * s[:, None]
+            p[bent] = geo.c[g] + rho * nrm + geo.w[g] * s[:, None]
+        return p
+
     def sample(self, t_s: FloatArray) -> State:
         """Position, velocity, acceleration, jerk at times ``t_s`` (shape ``(q,)``) -> ``(q, m)``."""
         if self.phase_count == 0:  # no motion: at rest at the origin
@@ -418,7 +435,7 @@ def position_bounds(traj: Trajectory) -> tuple[FloatArray, FloatArray]:
     """Smallest and largest position of every axis over each phase, ``(n, m)`` each: the
     cubic's extremes on straight phases; on arcs the end points and the points of the
     sweep where a plane axis turns (angles ``k pi / 2``)."""
-    p_end, _, _, _ = traj.end_states()
+    p_end = traj.end_positions()
     d = traj.duration_s[:, None]
     lo, hi = _cubic_extent(traj.p0_mm, p_end, traj.v0_mm_s, traj.a0_mm_s2, traj.j_mm_s3, d[:, 0])
     bent = np.flatnonzero(traj.curved)

@@ -29,6 +29,7 @@ import numpy as np
 
 from cncc import diagnostics as diag
 from cncc.backends.pulses.backlash import B, BurstMerger, PeriodBacklash, Train, add_period_counts
+from cncc.backends.pulses.blocks import blockwise
 from cncc.backends.pulses.chunk import AxisSteps, PulseLayout, StepChunk
 from cncc.backends.pulses.interp import SZGH_PERIOD_S, interp_window, period_count, phase_at
 from cncc.backends.pulses.limits import Reporter, check_soft_limits, check_spacing
@@ -180,7 +181,7 @@ def _exact(traj: Trajectory, specs: tuple[AxisPulseSpec, ...], cols: tuple[int, 
 def _interp(traj: Trajectory, specs: tuple[AxisPulseSpec, ...], cols: tuple[int, ...], post: _Post,
             budget: int, period_s: float) -> Iterator[StepChunk]:
     r = _steps_per_mm(traj, specs, cols)
-    vmax = axis_bounds(traj)[0].max(axis=0)  # arcs included
+    vmax = blockwise(axis_bounds, traj)[0].max(axis=0)  # arcs included
     per_period = float((r * vmax).sum() * period_s) + 1.0
     k_win = int(min(max(budget / per_period, 1.0), 1 << 20))
     total = period_count(traj, period_s)

@@ -19,6 +19,7 @@ import numpy as np
 import numpy.typing as npt
 
 from cncc import diagnostics as diag
+from cncc.backends.pulses.blocks import blockwise
 from cncc.backends.pulses.spec import AxisPulseSpec
 from cncc.diagnostics import DiagnosticSink
 from cncc.ir.trajectory import Trajectory, position_bounds
@@ -80,7 +81,7 @@ def check_soft_limits(traj: Trajectory, specs: tuple[AxisPulseSpec, ...], cols: 
         return
     if all(spec.soft_min_mm is None and spec.soft_max_mm is None for spec in specs):
         return
-    box_lo, box_hi = position_bounds(traj)  # exact extremes, arcs included
+    box_lo, box_hi = blockwise(position_bounds, traj)  # exact extremes, arcs included
     for spec, i in zip(specs, cols, strict=True):
         if spec.soft_min_mm is None and spec.soft_max_mm is None:
             continue

@@ -41,10 +41,8 @@ def _cdiv(n: int, d: int) -> int:
     return -((-n) // d)
 
 
-def _bounds(rel_t: I64, e: int) -> tuple[I64, I64]:
-    """Allowed reproduced times: ``[t - min(e, gap/2), t]`` (Klipper's ``minmax_point``)."""
-    gap = np.diff(rel_t, prepend=0)
-    return rel_t - np.minimum(gap // 2, e), rel_t
+_K = np.arange(1, 2 * MAX_WINDOW + 3, dtype=np.int64)  # windows double up to below 2 MAX_WINDOW
+_TRI = _K * (_K - 1) // 2
 
 
 def _longest(minp: I64, maxp: I64, add: int, outer: tuple[int, int]) -> tuple[int, int, int, int]:
@@ -53,17 +51,28 @@ def _longest(minp: I64, maxp: I64, add: int, outer: tuple[int, int]) -> tuple[in
     Returns ``(count, interval, lo, hi)`` where ``lo, hi`` is the interval range after the
     first point that fails (``count == len`` when none does).
     """
-    k = np.arange(1, minp.shape[0] + 1, dtype=np.int64)
-    q = add * (k * (k - 1) // 2)
-    low = -((q - minp) // k)  # ceil((minp - q) / k)
+    n = minp.shape[0]
+    k = _K[:n]
+    if add:
+        q = _TRI[:n] * add
+        low = np.subtract(q, minp)
+        high = np.subtract(maxp, q)
+    else:
+        low = np.negative(minp)
+        high = maxp.copy()
+    np.floor_divide(low, k, out=low)
+    np.negative(low, out=low)  # ceil((minp - q) / k)
     if add < 0:  # the last interval, interval + add (count - 1), stays >= 1
-        low = np.maximum(low, 1 - add * (k - 1))
-    lo = np.maximum.accumulate(np.maximum(low, outer[0]))
-    hi = np.minimum.accumulate(np.minimum((maxp - q) // k, outer[1]))
+        np.maximum(low, (1 + add) - _K[:n] * add, out=low)
+    low[0] = max(int(low[0]), outer[0])  # the running maximum then starts from the outer range
+    lo = np.maximum.accumulate(low)
+    np.floor_divide(high, k, out=high)
+    high[0] = min(int(high[0]), outer[1])
+    hi = np.minimum.accumulate(high)
     bad = lo > hi
-    c = int(np.argmax(bad)) if bad.any() else int(minp.shape[0])
-    if c == minp.shape[0]:
-        return c, int(hi[-1]), 0, 0
+    c = int(bad.argmax())
+    if c == 0 and not bad[0]:
+        return n, int(hi[-1]), 0, 0
     return c, int(hi[c - 1]) if c else 0, int(lo[c]), int(hi[c])
 
 
@@ -120,9 +129,20 @@ def compress_run(t: I64, last: int, e: int, final: bool) -> tuple[list[tuple[int
     i = 0
     n = t.shape[0]
     window = MIN_WINDOW
+    # the lower bounds of _bounds once for the whole run: t - min(gap / 2, e) with the gap to the
+    # previous step; only a window's first gap (to ``last``) differs, and is patched per window
+    early = np.empty_like(t)
+    if n > 1:
+        np.subtract(t[1:], t[:-1], out=early[1:])
+        early[1:] //= 2
+        np.minimum(early[1:], e, out=early[1:])
+    t_min = t - early
     while i < n:
         while True:
-            minp, maxp = _bounds(t[i:i + window] - last, e)
+            maxp = t[i:i + window] - last
+            minp = t_min[i:i + window] - last
+            first = int(maxp[0])
+            minp[0] = first - min(first // 2, e)
             iv, c, add = bisect_add(minp, maxp, e)
             if c < minp.shape[0] or i + window >= n or window >= MAX_WINDOW:
                 break

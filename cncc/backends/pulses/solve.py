@@ -27,7 +27,14 @@ from dataclasses import dataclass
 import numpy as np
 import numpy.typing as npt
 
-from cncc.backends.pulses.curved import MAX_SEGMENT_SWEEP_RAD, curved_step_times, turning_times
+from cncc.backends.pulses.blocks import BLOCK_PHASES, phase_slice
+from cncc.backends.pulses.curved import (
+    MAX_SEGMENT_SWEEP_RAD,
+    all_positions,
+    axis_positions,
+    curved_step_times,
+    turning_times,
+)
 from cncc.backends.pulses.roots import piece_times
 from cncc.backends.pulses.spec import AxisPulseSpec
 from cncc.ir.trajectory import Trajectory, axis_bounds
@@ -75,6 +82,14 @@ class Segments:
     tb_s: F64
     est_steps: F64  # estimated steps of all axes
     value_mm: F64  # every axis' position at each segment boundary
+    bent: npt.NDArray[np.bool_] | None = None  # (S,) segments on curved phases (None: found from the phase)
+
+    def curved(self, traj: Trajectory, lo: int, hi: int) -> npt.NDArray[np.bool_]:
+        """Whether segments ``[lo, hi)`` lie on curved phases."""
+        if self.bent is not None:
+            return self.bent[lo:hi]
+        out: npt.NDArray[np.bool_] = traj.curved[self.phase[lo:hi]]
+        return out
 
 
 def poly(p0: F64, v0: F64, a0: F64, j: F64, tau: F64) -> F64:
@@ -110,7 +125,27 @@ def speed_max(v0: F64, a0: F64, j: F64, t: F64) -> F64:
 
 
 def segment(traj: Trajectory, steps_per_mm: F64, budget: int) -> Segments:
-    """Cut phases so that no segment holds more than about ``budget`` steps."""
+    """Cut phases so that no segment holds more than about ``budget`` steps (a block of
+    :data:`.blocks.BLOCK_PHASES` phases at a time, so the temporaries stay small)."""
+    n = traj.phase_count
+    parts = [_segment_block(phase_slice(traj, a, min(a + BLOCK_PHASES, n)), a, steps_per_mm, budget)
+             for a in range(0, n, BLOCK_PHASES)]
+    if n:
+        end, _, _ = traj.end_state(n - 1)
+        values = np.vstack([*(p[4] for p in parts), end[None, :]])
+    else:
+        values = np.zeros((1, len(traj.axes)))
+    if not parts:
+        z = np.zeros(0)
+        return Segments(np.zeros(0, np.int64), z, z.copy(), z.copy(), values, np.zeros(0, bool))
+    phase, ta, tb, est, _, bent = (np.concatenate([p[k] for p in parts]) for k in range(6))
+    return Segments(phase, ta, tb, est, values, bent)
+
+
+def _segment_block(traj: Trajectory, offset: int, steps_per_mm: F64, budget: int
+                   ) -> tuple[I64, F64, F64, F64, F64, npt.NDArray[np.bool_]]:
+    """:func:`segment` of the phases of ``traj`` (a slice starting at phase ``offset``): phase,
+    start, end, estimated steps, start positions and curvedness of each segment."""
     n = traj.phase_count
     dur = traj.duration_s
     bent = traj.curved
@@ -136,14 +171,9 @@ def segment(traj: Trajectory, steps_per_mm: F64, budget: int) -> Segments:
     values = poly(traj.p0_mm[k], traj.v0_mm_s[k], traj.a0_mm_s2[k], traj.j_mm_s3[k], tcol)
     if bent.any():
         cb = np.flatnonzero(bent[k])
-        values[cb] = traj.states(k[cb], ta[cb])[0]
+        values[cb] = all_positions(traj, k[cb], ta[cb])
     values = np.where((sub == 0)[:, None], traj.p0_mm[k], values)
-    if n:
-        end, _, _ = traj.end_state(n - 1)
-        values = np.vstack([values, end[None, :]])
-    else:
-        values = np.zeros((1, len(traj.axes)))
-    return Segments(phase, ta, tb, (est / nsub)[phase], values)
+    return phase + offset, ta, tb, (est / nsub)[phase], values, bent[phase]
 
 
 def windows(seg: Segments, budget: int) -> list[tuple[int, int]]:
@@ -172,6 +202,7 @@ class _Pieces:
     pe: F64  # position at the piece end
     t_abs: F64  # piece start, trajectory time
     phase: I32
+    bent: npt.NDArray[np.bool_]  # on a curved phase
 
 
 def _pieces(traj: Trajectory, seg: Segments, lo: int, hi: int, i: int, spec: AxisPulseSpec) -> _Pieces | None:
@@ -181,7 +212,7 @@ def _pieces(traj: Trajectory, seg: Segments, lo: int, hi: int, i: int, spec: Axi
     a0, jk = traj.a0_mm_s2[ph, i], traj.j_mm_s3[ph, i]
     ta, tb = seg.ta_s[lo:hi], seg.tb_s[lo:hi]
     r1, r2 = velocity_roots(v0, a0, jk, ta, tb)
-    bent = traj.curved[ph]
+    bent = seg.curved(traj, lo, hi)
     if bent.any():
         cb = np.flatnonzero(bent)
         r1[cb] = turning_times(traj, ph[cb], ta[cb], tb[cb], i)
@@ -197,7 +228,7 @@ def _pieces(traj: Trajectory, seg: Segments, lo: int, hi: int, i: int, spec: Axi
     ystart = np.where(is_first, seg.value_mm[lo:hi, i][c], poly(p0[c], v0[c], a0[c], jk[c], pstart))
     if bent.any():
         inner = np.flatnonzero(bent[c] & ~is_first)
-        ystart[inner] = traj.states(ph[c[inner]], pstart[inner])[0][:, i]
+        ystart[inner] = axis_positions(traj, ph[c[inner]], pstart[inner], i)
     y_all = np.append(ystart, seg.value_mm[hi, i])
     n_all = spec.motor_steps(y_all)
     dn = np.diff(n_all)
@@ -206,7 +237,7 @@ def _pieces(traj: Trajectory, seg: Segments, lo: int, hi: int, i: int, spec: Axi
         return None
     c, tau_a = c[mv], pstart[mv]
     return _Pieces(c, tau_a, pend[mv], np.abs(dn[mv]), np.sign(dn[mv]).astype(np.int8), n_all[mv], ystart[mv],
-                   y_all[mv + 1], traj.t0_s[ph[c]] + tau_a, ph[c].astype(np.int32))
+                   y_all[mv + 1], traj.t0_s[ph[c]] + tau_a, ph[c].astype(np.int32), bent[c])
 
 
 def axis_runs(traj: Trajectory, seg: Segments, lo: int, hi: int, i: int, spec: AxisPulseSpec) -> tuple[F64, I8, I32]:
@@ -222,33 +253,59 @@ def axis_runs(traj: Trajectory, seg: Segments, lo: int, hi: int, i: int, spec: A
 
 
 def exact_axis_steps(traj: Trajectory, seg: Segments, lo: int, hi: int, i: int, spec: AxisPulseSpec) -> RawSteps:
-    """All steps of axis ``i`` over segments ``[lo, hi)``."""
+    """All steps of axis ``i`` over segments ``[lo, hi)``.
+
+    Straight pieces solve their own cubic (:func:`.roots.piece_times`); pieces on curved
+    phases go through their angles (:func:`.curved.curved_step_times`); each step is solved once.
+    """
     pc = _pieces(traj, seg, lo, hi, i, spec)
     if pc is None:
         return RawSteps.empty()
-    ph = seg.phase[lo:hi]
-    k = ph[pc.c]
-    v0, a0, jj = traj.v0_mm_s[k, i], traj.a0_mm_s2[k, i], traj.j_mm_s3[k, i]
-    tau_a, tau_e, counts, direction = pc.tau_a, pc.tau_e, pc.counts, pc.direction
-    va = v0 + tau_a * (a0 + tau_a * jj / 2)
-    aa = a0 + tau_a * jj
-    length = tau_e - tau_a
-    end_state = (pc.pe - pc.pa, v0 + tau_e * (a0 + tau_e * jj / 2), a0 + tau_e * jj)
-    dirf = direction.astype(np.float64)
+    counts, direction = pc.counts, pc.direction
     d = _distances(spec, counts, direction, pc.na, pc.pa)
-    ends = (end_state[0] * dirf, end_state[1] * dirf, end_state[2] * dirf)
-    u = piece_times(d, counts, va * dirf, aa * dirf, jj * dirf, length, ends)
-    bent = traj.curved[k]
-    if bent.any():  # arcs: through their angles (curved.py)
-        cb = np.flatnonzero(bent)
+    bent = pc.bent
+    if bent.all():
+        u = _curved(traj, seg, lo, pc, i, d)
+    elif not bent.any():
+        u = _straight(traj, seg, lo, pc, i, d)
+    else:
+        u = np.empty(d.shape[0])
         first = np.cumsum(counts) - counts
-        cc = counts[cb]
-        idx = np.arange(int(cc.sum()), dtype=np.int64) + np.repeat(first[cb] - (np.cumsum(cc) - cc), cc)
-        y = np.repeat(pc.pa, counts)[idx] + d[idx] * np.repeat(dirf, counts)[idx]
-        u[idx] = curved_step_times(traj, k[cb], i, tau_a[cb], tau_e[cb], counts[cb], y)
+        for kind in (bent, ~bent):
+            sel = np.flatnonzero(kind)
+            cc = counts[sel]
+            idx = np.arange(int(cc.sum()), dtype=np.int64) + np.repeat(first[sel] - (np.cumsum(cc) - cc), cc)
+            part = _take(pc, sel)
+            u[idx] = (_curved(traj, seg, lo, part, i, d[idx]) if kind is bent
+                      else _straight(traj, seg, lo, part, i, d[idx]))
     u += np.repeat(pc.t_abs, counts)
     return RawSteps(u, np.repeat(direction, counts), np.repeat(pc.phase, counts), pc.t_abs, direction, pc.phase,
                     np.cumsum(counts) - counts)
+
+
+def _take(pc: _Pieces, sel: I64) -> _Pieces:
+    return _Pieces(pc.c[sel], pc.tau_a[sel], pc.tau_e[sel], pc.counts[sel], pc.direction[sel], pc.na[sel],
+                   pc.pa[sel], pc.pe[sel], pc.t_abs[sel], pc.phase[sel], pc.bent[sel])
+
+
+def _straight(traj: Trajectory, seg: Segments, lo: int, pc: _Pieces, i: int, d: F64) -> F64:
+    """Local step times of pieces on straight phases: the roots of the axis' own cubic."""
+    k = seg.phase[lo + pc.c]
+    v0, a0, jj = traj.v0_mm_s[k, i], traj.a0_mm_s2[k, i], traj.j_mm_s3[k, i]
+    tau_a, tau_e = pc.tau_a, pc.tau_e
+    va = v0 + tau_a * (a0 + tau_a * jj / 2)
+    aa = a0 + tau_a * jj
+    dirf = pc.direction.astype(np.float64)
+    ends = ((pc.pe - pc.pa) * dirf, (v0 + tau_e * (a0 + tau_e * jj / 2)) * dirf, (a0 + tau_e * jj) * dirf)
+    return piece_times(d, pc.counts, va * dirf, aa * dirf, jj * dirf, tau_e - tau_a, ends)
+
+
+def _curved(traj: Trajectory, seg: Segments, lo: int, pc: _Pieces, i: int, d: F64) -> F64:
+    """Local step times of pieces on curved phases, through the boundaries' positions on the path."""
+    k = seg.phase[lo + pc.c]
+    y = d * np.repeat(pc.direction.astype(np.float64), pc.counts)
+    y += np.repeat(pc.pa, pc.counts)
+    return curved_step_times(traj, k, i, pc.tau_a, pc.tau_e, pc.counts, y)
 
 
 def _distances(spec: AxisPulseSpec, counts: I64, direction: I8, na: I64, pa: F64) -> F64:

@@ -16,6 +16,7 @@ import numpy as np
 
 from cncc.backends.pulses.chunk import PulseLayout, StepChunk
 from cncc.backends.pulses.events import KIND_DIR, KIND_FALL, ordered_events
+from cncc.backends.pulses.text import stamped
 
 
 def _ident(k: int) -> str:
@@ -42,15 +43,19 @@ def header(layout: PulseLayout, *, comment: str = "cncc step/dir pulses") -> str
 
 
 def write_vcd(chunks: Iterable[StepChunk], out: TextIO) -> None:
-    """Write the pulses of ``chunks`` to ``out`` as VCD text."""
+    """Write the pulses of ``chunks`` to ``out`` as VCD text (rendered by numpy, :mod:`.text`)."""
     started = False
     last_t = 0
-    tokens: list[str] = []
+    tokens: list[bytes] = []
     for layout, ev in ordered_events(chunks, with_falls=True):
         if not started:
             out.write(header(layout))
             m = len(layout.axes)
-            tokens = [f"{v}{_ident(s)}\n" for s in range(2 * m) for v in (0, 1)]
+            names = [_ident(s) for s in range(2 * m)]
+            width = max(len(n) for n in names)
+            # one length for all tokens (more than 47 axes: two-character identifiers), so pad
+            # the shorter ones with a trailing space, which VCD readers skip as a separator
+            tokens = [f"{v}{n}".ljust(width + 1).encode("ascii") + b"\n" for n in names for v in (0, 1)]
             started = True
         if ev["t_ns"].size == 0:
             continue
@@ -59,15 +64,8 @@ def write_vcd(chunks: Iterable[StepChunk], out: TextIO) -> None:
         kind = ev["kind"]
         sig = 2 * axis + (kind == KIND_DIR)
         value = np.where(kind == KIND_DIR, ev["level"], (kind != KIND_FALL).astype(np.uint8))
-        code = (2 * sig + value).tolist()
         new_t = np.empty(t.shape, dtype=bool)
         new_t[0] = int(t[0]) != last_t
         new_t[1:] = t[1:] != t[:-1]
-        times = t.tolist()
-        parts: list[str] = []
-        for k, (tt, nt) in enumerate(zip(times, new_t.tolist(), strict=True)):
-            if nt:
-                parts.append(f"#{tt}\n")
-            parts.append(tokens[code[k]])
-        out.write("".join(parts))
+        out.write(stamped(t, new_t, tokens, 2 * sig + value).decode("ascii"))
         last_t = int(t[-1])
