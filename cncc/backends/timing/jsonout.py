@@ -39,7 +39,7 @@ def _column(c: Column) -> dict[str, Any]:
         "trajectory_s": to_s(c.motion_ns), "trajectory_ns": c.motion_ns,
         "events_s": to_s(c.event_ns), "events_ns": c.event_ns,
         "operator_dependent_s": to_s(c.operator_ns), "operator_dependent_ns": c.operator_ns,
-        "phases": r.trajectory.phase_count,
+        "phases": r.phase_count,
         "by_category": {cat: _t(c.category_ns[cat]) for cat in CATEGORIES},
     }
 
