@@ -25,6 +25,10 @@ N_WORD = re.compile(r"\s*/?\s*([Nn]\s*\d+)")
 """The N word at the start of a block (as the report shows it: no spaces, upper case)."""
 
 
+_MAY_START_N = tuple(map(ord, "Nn/ \t\v\f\r\x1c\x1d\x1e\x1f\x85\xa0"))
+"""Characters a line with an N word can start with (``\\s`` of :data:`N_WORD`, ``/``, ``N``)."""
+
+
 def n_word(raw: str) -> str:
     m = N_WORD.match(raw)
     return m.group(1).replace(" ", "").upper() if m else ""
@@ -37,6 +41,21 @@ class LineStarts:
     def __init__(self, sources: SourceMap) -> None:
         self.sources = sources
         self._starts: dict[int, I64] = {}
+        self._first: dict[int, Any] = {}
+
+    def first_chars(self, sid: int) -> Any:
+        """The first byte of each line of an ASCII source (a line's newline if it is empty); None
+        for other texts."""
+        import numpy as np
+
+        if sid not in self._first:
+            src, starts = self.sources.get(sid), self.of(sid)
+            got = None
+            if src is not None and starts is not None and src.text.isascii():
+                raw = np.frombuffer((src.text + "\n").encode("ascii"), dtype=np.uint8)
+                got = raw[starts]
+            self._first[sid] = got
+        return self._first[sid]
 
     def of(self, sid: int) -> I64 | None:
         """The line starts of source ``sid`` (None: no such source)."""
@@ -72,7 +91,7 @@ class SourceLines(Sequence[str]):
         import numpy as np
 
         sids, lines = self._sid[lo:hi], self._line[lo:hi]
-        raws = [""] * len(lines)
+        out = [""] * len(lines)
         for sid in np.unique(sids).tolist():
             starts = self._starts.of(sid)
             src = self._starts.sources.get(sid)
@@ -84,13 +103,20 @@ class SourceLines(Sequence[str]):
             begin = starts[np.clip(ln - 1, 0, last)]
             end = np.where(ln < len(starts), starts[np.clip(ln, 0, last)] - 1, len(src.text))
             ok = (ln >= 1) & (ln <= len(starts))
+            if self._what == "n":  # only a line that starts with N, "/" or a blank can have an N word
+                first = self._starts.first_chars(sid)
+                if first is not None:
+                    ok &= np.isin(first[np.clip(ln - 1, 0, last)], _MAY_START_N)
             text = src.text
-            for k, b, e, good in zip(mine.tolist(), begin.tolist(), end.tolist(), ok.tolist(), strict=True):
-                if good:
-                    raws[k] = text[b:e].rstrip("\r")
-        if self._what == "n":
-            return [n_word(r) for r in raws]
-        return [r.strip() for r in raws]
+            if self._what == "n":
+                for k, b, e, good in zip(mine.tolist(), begin.tolist(), end.tolist(), ok.tolist(), strict=True):
+                    if good:
+                        out[k] = n_word(text[b:e].rstrip("\r"))
+            else:
+                for k, b, e, good in zip(mine.tolist(), begin.tolist(), end.tolist(), ok.tolist(), strict=True):
+                    if good:
+                        out[k] = text[b:e].rstrip("\r").strip()
+        return out
 
     @overload
     def __getitem__(self, k: int) -> str: ...
