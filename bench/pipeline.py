@@ -157,8 +157,13 @@ def main() -> int:
     with tempfile.TemporaryDirectory(prefix="cncc-bench-") as tmp:
         if not args.no_bytecode_cache:
             PYCACHE["PYTHONPYCACHEPREFIX"] = os.path.join(tmp, "pycache")
+            warm = os.path.join(tmp, "warm.nc")
+            with open(warm, "w") as f:
+                f.write(program("arcs", 200))
             for tree in [ROOT] + ([before] if before else []):
                 run([sys.executable, "-m", "compileall", "-q", os.path.join(tree, "cncc")], cwd=tree)
+                for name in commands:  # one warm-up run of each command (file cache, lazily imported modules)
+                    run([*cncc, "-x", "syntec", *COMMANDS[name], warm], cwd=tree)
         tools = os.path.join(tmp, "tools.toml")
         with open(tools, "w") as f:
             f.write("units = \"mm\"\n[tools.1]\nlength_mm = 0.0\nradius_mm = 0.2\n")

@@ -295,7 +295,9 @@ def batch_phases_s(b: MoveBatch, machine: MachineModel) -> tuple[F64, I64] | Non
     chords = np.ones(n, dtype=np.int64)
     lin = np.flatnonzero(b.kind == LINEAR)
     if len(lin):
-        length = np.fromiter(map(math.dist, starts[lin, :3].tolist(), b.end[lin, :3].tolist()), np.float64, len(lin))
+        d = b.end[lin, :3] - starts[lin, :3]  # math.dist(p, q) is math.hypot of these differences, bit for bit
+        length = np.fromiter(map(math.hypot, d[:, 0].tolist(), d[:, 1].tolist(), d[:, 2].tolist()), np.float64,
+                             len(lin))
         for k in np.flatnonzero(~(length > 0.0)).tolist():  # only rotary axes move: their length
             length[k] = math.dist(starts[lin[k]].tolist(), b.end[lin[k]].tolist())
         feed = b.feed[lin]

@@ -119,21 +119,24 @@ def _line_json(rep: TimingReport, lo: int, hi: int) -> list[str]:
     cats = [enc(c) for c in tab.categories] + [enc("")]  # index -1: ""
     limits = [enc(k) for k in LIMIT_KEYS] + [enc("")]
     limit_names = [enc(k) + ": " for k in LIMIT_KEYS]
+    width = len(limits)
+    mid = [f'"category": {c}, "limited_by": {lim}, "limits_ns": {{' for c in cats for lim in limits]
+    mid_of = (np.where(tab.category[lo:hi] < 0, len(cats) - 1, tab.category[lo:hi]).astype(np.int64) * width
+              + np.where(tab.limited_by[lo:hi] < 0, width - 1, tab.limited_by[lo:hi]))
     t_ns = tab.times_ns[lo:hi]
     if t_ns.shape[1] == 1:
-        times = [f'"times_ns": [{v}], "times_s": [{v / NS_PER_S!r}], "category": ' for v in t_ns[:, 0].tolist()]
+        times = [f'"times_ns": [{v}], "times_s": [{v / NS_PER_S!r}], ' for v in t_ns[:, 0].tolist()]
     else:
         times = [f'"times_ns": [{", ".join(map(repr, ts))}], "times_s": [{", ".join(repr(v / NS_PER_S) for v in ts)}], '
-                 '"category": ' for ts in t_ns.tolist()]
+                 for ts in t_ns.tolist()]
     block = tab.limits_ns[lo:hi]
     given = [""] * (hi - lo)
     rows, cols = np.nonzero(block)
     for r, c, v in zip(rows.tolist(), cols.tolist(), block[rows, cols].tolist(), strict=True):
         given[r] = f"{given[r]}, {limit_names[c]}{v}" if given[r] else f"{limit_names[c]}{v}"
-    ops = ['}, "elapsed_s": ', ', "operator_dependent": true}', ', "operator_dependent": false}']
     rows_ = zip(tab.file_of[lo:hi].tolist(), tab.line[lo:hi].tolist(), tab.n[lo:hi], tab.text[lo:hi], times,
-                tab.category[lo:hi].tolist(), tab.limited_by[lo:hi].tolist(), given, tab.elapsed_ns[lo:hi].tolist(),
-                tab.operator_dependent[lo:hi].tolist(), strict=True)
-    return [f'{files[f]}{line}, "n": {enc(n)}, "text": {enc(text)}, {ts}{cats[cat]}, "limited_by": {limits[lim]}, '
-            f'"limits_ns": {{{lns}{ops[0]}{end / NS_PER_S!r}{ops[1] if op else ops[2]}'
-            for f, line, n, text, ts, cat, lim, lns, end, op in rows_]
+                mid_of.tolist(), given, tab.elapsed_ns[lo:hi].tolist(), tab.operator_dependent[lo:hi].tolist(),
+                strict=True)
+    flag = (', "operator_dependent": false}', ', "operator_dependent": true}')
+    return [f'{files[f]}{line}, "n": {enc(n)}, "text": {enc(text)}, {ts}{mid[m]}{lns}}}, "elapsed_s": '
+            f'{end / NS_PER_S!r}{flag[op]}' for f, line, n, text, ts, m, lns, end, op in rows_]

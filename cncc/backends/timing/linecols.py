@@ -108,14 +108,18 @@ class SourceLines(Sequence[str]):
                 if first is not None:
                     ok &= np.isin(first[np.clip(ln - 1, 0, last)], _MAY_START_N)
             text = src.text
-            if self._what == "n":
-                for k, b, e, good in zip(mine.tolist(), begin.tolist(), end.tolist(), ok.tolist(), strict=True):
-                    if good:
-                        out[k] = n_word(text[b:e].rstrip("\r"))
-            else:
-                for k, b, e, good in zip(mine.tolist(), begin.tolist(), end.tolist(), ok.tolist(), strict=True):
-                    if good:
-                        out[k] = text[b:e].rstrip("\r").strip()
+            if len(ln) and bool(ok.all()) and (len(ln) == 1 or bool((np.diff(ln) == 1).all())):
+                region = text[int(begin[0]):int(end[-1])].split("\n")  # consecutive lines: one split
+                if self._what == "n":
+                    for k in np.flatnonzero(ok).tolist():
+                        out[int(mine[k])] = n_word(region[k].rstrip("\r"))
+                else:
+                    for k, raw in zip(mine.tolist(), region, strict=True):
+                        out[k] = raw.strip()
+                continue
+            for k, b, e in zip(mine[ok].tolist(), begin[ok].tolist(), end[ok].tolist(), strict=True):
+                raw = text[b:e]
+                out[k] = n_word(raw.rstrip("\r")) if self._what == "n" else raw.strip()
         return out
 
     @overload

@@ -203,7 +203,10 @@ class TimingReport:
         import numpy as np
 
         group: dict[str, int] = {}
-        of = np.fromiter((group.setdefault(n, len(group)) for n in self.lines.n), np.int64, len(self.lines))
+        names = self.lines.n
+        of = np.zeros(len(names), dtype=np.int64)
+        for lo in range(0, len(names), 4096):  # a chunk at a time: a streamed report reads its N words from the source
+            of[lo:lo + 4096] = [group.setdefault(n, len(group)) for n in names[lo:lo + 4096]]
         times = self.lines.times_ns
         sums = np.zeros((len(group), times.shape[1] if times.ndim == 2 else 0), dtype=np.int64)
         np.add.at(sums, of, times)
