@@ -190,7 +190,7 @@ def compile(text_or_path: str | os.PathLike[str], dialect: str | None = None, ma
               if k in options}
     fmt = options.pop("report_format", "json")
     opts = Options(inputs=[path or "-"], dialect=dialect, machine=machine or DEFAULT_MACHINE, emit=emit,
-                   project_config=True, given=frozenset(given),
+                   project_config=True, given=frozenset(given), keep_trajectory=True,
                    report_format="json" if emit == "timing" else fmt, **options)
     stdin = None if path is not None else io.StringIO(os.fspath(text_or_path))
     with recorded() as caught:

@@ -79,6 +79,7 @@ class Options:
     print_after: tuple[str, ...] = ()  # --print-after=NAME: the IR after these passes
     print_file: str | None = None  # --print-file=FILE: where --print-after writes (default: stderr)
     time_passes: bool = False  # --time-passes: the per-pass timing table on stderr
+    keep_trajectory: bool = False  # --emit=timing: keep the trajectories in Result.runs (cncc.api), never stream
     # the command line (cncc/cli.py): project configuration and what the diagnostics options ask
     project_config: bool = False  # read cncc.toml and the modeline per input (cncc/config.py)
     given: frozenset[str] = frozenset()  # fields set on the command line (they beat cncc.toml and the modeline)
@@ -719,15 +720,18 @@ def run_backend(items: Iterator[Item], src: SourceFile, sources: SourceMap, dial
             cmds = iter(annotated_commands(cmd_list, runs, sources, src.name, dialect))
         return emit_gcode(cmds if opts.expand and opts.annotate_time else items, target, eopts, sink)
     if opts.emit == "timing":
-        from cncc.backends.timing import timing_report
+        from cncc.backends.timing import streamable, streamed_timing_report, timing_report
         from cncc.backends.timing.progress import track_source
 
+        color = opts.output in (None, "-") and sys.stdout.isatty()
+        width = shutil.get_terminal_size().columns if color else None  # the text report fits the terminal
+        if streamable(opts, machine):  # -O0 from the batches, without a command list (timing/streamed.py)
+            return streamed_timing_report(track_source(items, len(src.text), src.source_id), machine, src, sources,
+                                          dialect, opts.report_format, sink, color=color, width=width)
         cmd_list = list(track_source(cmds, len(src.text), src.source_id))
         runs = timing_runs(cmd_list, machine, opts, sink, manager)
         if keep_runs is not None:
             keep_runs.extend(runs)
-        color = opts.output in (None, "-") and sys.stdout.isatty()
-        width = shutil.get_terminal_size().columns if color else None  # the text report fits the terminal
         return timing_report(cmd_list, runs, src, sources, dialect, opts.report_format, sink,
                              annotate=opts.annotate_time, color=color, width=width)
     if opts.emit == "pulses":

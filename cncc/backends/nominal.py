@@ -22,10 +22,18 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
 from cncc.ir import Arc, Aux, Command, Dwell, Linear, Rapid, Spindle, SpindleState, Stop, StopKind, ToolChange
+from cncc.ir.frame import Plane
 from cncc.ir.machine import MachineModel, RapidMode
 
 if TYPE_CHECKING:
+    import numpy as np
+    import numpy.typing as npt
+
+    from cncc.ir.batch import MoveBatch
     from cncc.ir.trajectory import Trajectory
+
+    F64 = npt.NDArray[np.float64]
+    I64 = npt.NDArray[np.int64]
 
 ARC_CHORD_MAX_RAD = math.radians(10.0)
 """Nominal trajectories draw arcs as chords of at most this sweep (for plots only:
@@ -42,27 +50,41 @@ class NominalTiming:
 
 def arc_sweep_rad(c: Arc) -> float:
     """Signed sweep of an arc (positive counter-clockwise), full turns included."""
-    p = c.plane
-    i, j = p.first, p.second
-    a0 = math.atan2(c.start[j] - c.center[j], c.start[i] - c.center[i])
-    a1 = math.atan2(c.end[j] - c.center[j], c.end[i] - c.center[i])
+    return sweep_rad(c.start, c.end, c.center, c.turns, c.plane)
+
+
+def sweep_rad(start: Sequence[float], end: Sequence[float], center: Sequence[float], turns: int, plane: Plane) -> float:
+    """:func:`arc_sweep_rad` of an arc given by its parts (the rows of a batch use it too)."""
+    i, j = plane.first, plane.second
+    a0 = math.atan2(start[j] - center[j], start[i] - center[i])
+    a1 = math.atan2(end[j] - center[j], end[i] - center[i])
     sweep = a1 - a0
-    if c.turns > 0:
+    if turns > 0:
         while sweep <= 1e-12:
             sweep += 2 * math.pi
-        return sweep + 2 * math.pi * (c.turns - 1)
+        return sweep + 2 * math.pi * (turns - 1)
     while sweep >= -1e-12:
         sweep -= 2 * math.pi
-    return sweep - 2 * math.pi * (-c.turns - 1)
+    return sweep - 2 * math.pi * (-turns - 1)
 
 
 def arc_length_mm(c: Arc) -> float:
-    p = c.plane
-    i, j, n = p.first, p.second, p.normal
-    r = math.hypot(c.start[i] - c.center[i], c.start[j] - c.center[j])
-    planar = abs(arc_sweep_rad(c)) * r
-    helix = c.end[n] - c.start[n]
+    return helix_length_mm(c.start, c.end, c.center, arc_sweep_rad(c), c.plane)
+
+
+def helix_length_mm(start: Sequence[float], end: Sequence[float], center: Sequence[float], sweep: float,
+                    plane: Plane) -> float:
+    """Length of the helix from ``start`` to ``end`` around ``center`` over ``sweep`` radians."""
+    i, j, n = plane.first, plane.second, plane.normal
+    r = math.hypot(start[i] - center[i], start[j] - center[j])
+    planar = abs(sweep) * r
+    helix = end[n] - start[n]
     return math.hypot(planar, helix)
+
+
+def arc_chords(sweep: float) -> int:
+    """How many chords a nominal trajectory draws an arc of ``sweep`` radians with."""
+    return max(1, math.ceil(abs(sweep) / ARC_CHORD_MAX_RAD))
 
 
 def linear_length_mm(c: Linear) -> float:
@@ -156,17 +178,10 @@ class _Rows:
 
 
 def _rapid_rows(rows: _Rows, c: Rapid, i: int, machine: MachineModel, limit: int) -> None:
-    total_s = rapid_time_s(c.start, c.end, machine)
     if machine.rapid_mode is not RapidMode.INDEPENDENT:
-        rows.add(total_s, c.start, c.end, i, limit)
+        rows.add(rapid_time_s(c.start, c.end, machine), c.start, c.end, i, limit)
         return
-    # each axis at its own rate: a new phase wherever an axis arrives
-    finish_s = [0.0] * len(c.start)
-    for k, axis in enumerate(machine.axes[: len(c.start)]):
-        d = abs(c.end[k] - c.start[k])
-        finish_s[k] = d / (axis.rapid_mm_min / 60.0) if d > 0 else 0.0
-    for k in range(len(machine.axes), len(c.start)):  # axes the machine does not know: along the whole move
-        finish_s[k] = total_s if c.end[k] != c.start[k] else 0.0
+    finish_s = axis_finish_s(c.start, c.end, machine)
 
     def at(t_s: float) -> list[float]:
         return [s + (e - s) * (min(t_s, f) / f if f > 0 else 1.0)
@@ -177,6 +192,30 @@ def _rapid_rows(rows: _Rows, c: Rapid, i: int, machine: MachineModel, limit: int
         if t > t_prev:
             rows.add(t - t_prev, at(t_prev), at(t), i, limit)
             t_prev = t
+
+
+def axis_finish_s(start: Sequence[float], end: Sequence[float], machine: MachineModel) -> list[float]:
+    """Independent rapids: when each axis arrives (each at its own rate; the machine's unknown axes
+    along the whole move)."""
+    total_s = rapid_time_s(start, end, machine)
+    finish_s = [0.0] * len(start)
+    for k, axis in enumerate(machine.axes[: len(start)]):
+        d = abs(end[k] - start[k])
+        finish_s[k] = d / (axis.rapid_mm_min / 60.0) if d > 0 else 0.0
+    for k in range(len(machine.axes), len(start)):
+        finish_s[k] = total_s if end[k] != start[k] else 0.0
+    return finish_s
+
+
+def independent_rapid_phases_s(start: Sequence[float], end: Sequence[float], machine: MachineModel) -> list[float]:
+    """The phase durations :func:`nominal_trajectory` gives an independent rapid (one per arrival)."""
+    out: list[float] = []
+    t_prev = 0.0
+    for t in sorted(set(axis_finish_s(start, end, machine))):
+        if t > t_prev:
+            out.append(t - t_prev)
+            t_prev = t
+    return out
 
 
 def _arc_point(c: Arc, u: float, sweep: float) -> list[float]:
@@ -195,7 +234,7 @@ def _arc_point(c: Arc, u: float, sweep: float) -> list[float]:
 def _arc_rows(rows: _Rows, c: Arc, i: int, limit: int) -> None:
     total_s = feed_time_s(arc_length_mm(c), c.feed_mm_min)
     sweep = arc_sweep_rad(c)
-    n = max(1, math.ceil(abs(sweep) / ARC_CHORD_MAX_RAD))
+    n = arc_chords(sweep)
     prev: Sequence[float] = c.start
     for k in range(1, n + 1):
         nxt = c.end if k == n else _arc_point(c, k / n, sweep)
@@ -233,3 +272,64 @@ def nominal_trajectory(cmds: Sequence[Command], machine: MachineModel) -> Trajec
     return Trajectory(t0, dur, np.asarray(rows.p0_mm, dtype=np.float64), np.asarray(rows.v_mm_s, dtype=np.float64),
                       zeros, zeros.copy(), np.asarray(rows.cmd, dtype=np.int64),
                       np.asarray(rows.limit, dtype=np.int8), AXES)
+
+
+# ---- batches of moves -------------------------------------------------------------------
+def batch_phases_s(b: MoveBatch, machine: MachineModel) -> tuple[F64, I64] | None:
+    """The phase durations :func:`nominal_trajectory` gives the moves of ``b``, from its arrays.
+
+    ``(durations of the phases in order, phases of each move)``; bit for bit the values the
+    per-command code gives each move (the same float operations: element-wise in numpy,
+    ``math.dist`` for lengths and the scalar arc code per arc, whose libm calls numpy may not
+    reproduce).  None when the batch needs the per-command code (constant surface speed).
+    """
+    import numpy as np
+
+    from cncc.ir.batch import ARC, LINEAR, RAPID
+
+    if b.motion.css is not None:
+        return None
+    n = len(b)
+    starts = b.starts()
+    row_s = np.zeros(n, dtype=np.float64)
+    chords = np.ones(n, dtype=np.int64)
+    lin = np.flatnonzero(b.kind == LINEAR)
+    if len(lin):
+        d = b.end[lin, :3] - starts[lin, :3]  # math.dist(p, q) is math.hypot of these differences, bit for bit
+        length = np.fromiter(map(math.hypot, d[:, 0].tolist(), d[:, 1].tolist(), d[:, 2].tolist()), np.float64,
+                             len(lin))
+        for k in np.flatnonzero(~(length > 0.0)).tolist():  # only rotary axes move: their length
+            length[k] = math.dist(starts[lin[k]].tolist(), b.end[lin[k]].tolist())
+        feed = b.feed[lin]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            row_s[lin] = np.where(feed > 0, length / (feed / 60.0), 0.0)
+    rap = np.flatnonzero(b.kind == RAPID)
+    independent = machine.rapid_mode is RapidMode.INDEPENDENT and len(rap) > 0
+    n_axes = min(len(machine.axes), 6)
+    if len(rap) and not independent and n_axes:
+        d = np.abs(b.end[rap, :n_axes] - starts[rap, :n_axes])
+        rate = np.asarray([a.rapid_mm_min / 60.0 for a in machine.axes[:n_axes]], dtype=np.float64)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            row_s[rap] = np.where(d > 0, d / rate, 0.0).max(axis=1)
+    arcs = np.flatnonzero(b.kind == ARC).tolist()
+    if arcs:
+        st, en, ce = starts[arcs].tolist(), b.end[arcs].tolist(), b.center[arcs].tolist()
+        for k, r, turns, feed_mm_min in zip(range(len(arcs)), arcs, b.turns[arcs].tolist(), b.feed[arcs].tolist(),
+                                            strict=True):
+            sweep = sweep_rad(st[k], en[k], ce[k], turns, b.plane)
+            chords[r] = m = arc_chords(sweep)
+            row_s[r] = feed_time_s(helix_length_mm(st[k], en[k], ce[k], sweep, b.plane), feed_mm_min) / m
+    counts = np.where(row_s > 0.0, chords, 0)
+    if not independent:
+        return np.repeat(row_s, counts), counts
+    pieces: list[float] = []
+    rapid_rows = set(rap.tolist())
+    st_all, en_all = starts.tolist(), b.end.tolist()
+    for r, (t, m) in enumerate(zip(row_s.tolist(), counts.tolist(), strict=True)):
+        if r in rapid_rows:
+            phases = independent_rapid_phases_s(st_all[r], en_all[r], machine)
+            counts[r] = len(phases)
+            pieces += phases
+        else:
+            pieces += [t] * m
+    return np.asarray(pieces, dtype=np.float64), counts

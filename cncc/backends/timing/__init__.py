@@ -12,7 +12,8 @@ Times add up exactly: see :mod:`.model`.
 
 from __future__ import annotations
 
-from collections.abc import Iterator, Sequence
+from collections.abc import Iterable, Iterator, Sequence
+from typing import Any
 
 from cncc import diagnostics as dg
 from cncc.backends.timing.columns import ColumnSpec, default_columns, parse_compare
@@ -20,11 +21,12 @@ from cncc.backends.timing.model import Run, TimingReport
 from cncc.diagnostics import DiagnosticSink
 from cncc.dialects import Dialect
 from cncc.ir import Command
+from cncc.ir.batch import Item
 from cncc.ir.machine import MachineModel
 from cncc.source import NO_SPAN, SourceFile, SourceMap
 
 __all__ = ["FORMATS", "ColumnSpec", "Run", "TimingReport", "annotated_commands", "default_columns", "event_pauses",
-           "parse_compare", "timing_report"]
+           "parse_compare", "streamable", "streamed_timing_report", "timing_report"]
 
 FORMATS = ("text", "json", "html")
 
@@ -57,6 +59,33 @@ def timing_report(cmds: Sequence[Command], runs: Sequence[Run], src: SourceFile,
         from cncc.backends.timing.html import render_html
 
         return iter((render_html(rep, cmds),))
+    from cncc.backends.timing.text import render_text
+
+    return iter((render_text(rep, color, width),))
+
+
+def streamable(opts: Any, machine: MachineModel) -> bool:
+    """True when the report of ``opts`` (a :class:`cncc.driver.Options`) can be made while the
+    commands stream (:mod:`.streamed`): one nominal -O0 column on ``machine`` without reversal
+    pauses, as text or JSON, with the default plan stage and no pass instruments, and no caller
+    that keeps the trajectory (``keep_trajectory``: cncc.api)."""
+    return (opts.opt_level == 0 and not opts.compare and not opts.annotate_time and not opts.keep_trajectory
+            and opts.report_format in ("text", "json") and not opts.passes and not opts.verify_each
+            and not opts.print_after and not opts.time_passes
+            and not any(a.step.reversal_delay_s > 0 for a in machine.axes))
+
+
+def streamed_timing_report(items: Iterable[Item], machine: MachineModel, src: SourceFile, sources: SourceMap,
+                           dialect: Dialect, fmt: str, sink: DiagnosticSink, *, color: bool = False,
+                           width: int | None = None) -> Iterator[str]:
+    """:func:`timing_report` of the -O0 column, made from ``items`` as they stream (:func:`streamable`)."""
+    from cncc.backends.timing.streamed import streamed_report
+
+    rep = streamed_report(items, machine, sources, src.name, dialect.name, sink=sink)
+    if fmt == "json":
+        from cncc.backends.timing.jsonout import iter_json
+
+        return iter_json(rep)
     from cncc.backends.timing.text import render_text
 
     return iter((render_text(rep, color, width),))

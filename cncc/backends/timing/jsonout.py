@@ -39,7 +39,7 @@ def _column(c: Column) -> dict[str, Any]:
         "trajectory_s": to_s(c.motion_ns), "trajectory_ns": c.motion_ns,
         "events_s": to_s(c.event_ns), "events_ns": c.event_ns,
         "operator_dependent_s": to_s(c.operator_ns), "operator_dependent_ns": c.operator_ns,
-        "phases": r.trajectory.phase_count,
+        "phases": r.phase_count,
         "by_category": {cat: _t(c.category_ns[cat]) for cat in CATEGORIES},
     }
 
@@ -109,22 +109,34 @@ def iter_json(rep: TimingReport) -> Iterator[str]:
     yield "]" + tail + "\n"
 
 
-def _line_json(rep: TimingReport, lo: int, hi: int) -> Iterator[str]:
+def _line_json(rep: TimingReport, lo: int, hi: int) -> list[str]:
     """Lines ``lo:hi`` as json.dumps writes each line's dict (default separators, ASCII)."""
+    import numpy as np
+
     tab = rep.lines
     enc = encode_basestring_ascii
-    files = [enc(f) for f in tab.files]
+    files = [f'{{"file": {enc(f)}, "line": ' for f in tab.files]
     cats = [enc(c) for c in tab.categories] + [enc("")]  # index -1: ""
     limits = [enc(k) for k in LIMIT_KEYS] + [enc("")]
     limit_names = [enc(k) + ": " for k in LIMIT_KEYS]
-    t_ns = tab.times_ns[lo:hi].tolist()
-    lim_ns = tab.limits_ns[lo:hi].tolist()
-    rows = zip(tab.file_of[lo:hi].tolist(), tab.line[lo:hi].tolist(), tab.n[lo:hi], tab.text[lo:hi], t_ns,
-               tab.category[lo:hi].tolist(), tab.limited_by[lo:hi].tolist(), lim_ns, tab.elapsed_ns[lo:hi].tolist(),
-               tab.operator_dependent[lo:hi].tolist(), strict=True)
-    for f, line, n, text, ts, cat, lim, lns, end, op in rows:
-        given = ", ".join(name + repr(v) for name, v in zip(limit_names, lns, strict=True) if v)
-        yield (f'{{"file": {files[f]}, "line": {line}, "n": {enc(n)}, "text": {enc(text)}, '
-               f'"times_ns": [{", ".join(map(repr, ts))}], "times_s": [{", ".join(repr(v / NS_PER_S) for v in ts)}], '
-               f'"category": {cats[cat]}, "limited_by": {limits[lim]}, "limits_ns": {{{given}}}, '
-               f'"elapsed_s": {end / NS_PER_S!r}, "operator_dependent": {"true" if op else "false"}}}')
+    width = len(limits)
+    mid = [f'"category": {c}, "limited_by": {lim}, "limits_ns": {{' for c in cats for lim in limits]
+    mid_of = (np.where(tab.category[lo:hi] < 0, len(cats) - 1, tab.category[lo:hi]).astype(np.int64) * width
+              + np.where(tab.limited_by[lo:hi] < 0, width - 1, tab.limited_by[lo:hi]))
+    t_ns = tab.times_ns[lo:hi]
+    if t_ns.shape[1] == 1:
+        times = [f'"times_ns": [{v}], "times_s": [{v / NS_PER_S!r}], ' for v in t_ns[:, 0].tolist()]
+    else:
+        times = [f'"times_ns": [{", ".join(map(repr, ts))}], "times_s": [{", ".join(repr(v / NS_PER_S) for v in ts)}], '
+                 for ts in t_ns.tolist()]
+    block = tab.limits_ns[lo:hi]
+    given = [""] * (hi - lo)
+    rows, cols = np.nonzero(block)
+    for r, c, v in zip(rows.tolist(), cols.tolist(), block[rows, cols].tolist(), strict=True):
+        given[r] = f"{given[r]}, {limit_names[c]}{v}" if given[r] else f"{limit_names[c]}{v}"
+    rows_ = zip(tab.file_of[lo:hi].tolist(), tab.line[lo:hi].tolist(), tab.n[lo:hi], tab.text[lo:hi], times,
+                mid_of.tolist(), given, tab.elapsed_ns[lo:hi].tolist(), tab.operator_dependent[lo:hi].tolist(),
+                strict=True)
+    flag = (', "operator_dependent": false}', ', "operator_dependent": true}')
+    return [f'{files[f]}{line}, "n": {enc(n)}, "text": {enc(text)}, {ts}{mid[m]}{lns}}}, "elapsed_s": '
+            f'{end / NS_PER_S!r}{flag[op]}' for f, line, n, text, ts, m, lns, end, op in rows_]

@@ -11,9 +11,9 @@ Array shapes: ``n`` commands, ``L`` source lines that produced commands,
 
 from __future__ import annotations
 
-from collections.abc import Iterator
+from collections.abc import Iterator, Sequence
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, overload
+from typing import TYPE_CHECKING, Any, overload
 
 from cncc.ir.machine import MachineModel
 
@@ -21,9 +21,11 @@ if TYPE_CHECKING:
     import numpy as np
     import numpy.typing as npt
 
+    from cncc.backends.timing.linecols import SparseRows
     from cncc.ir.trajectory import Trajectory
 
     I64 = npt.NDArray[np.int64]
+    Ints = npt.NDArray[np.integer[Any]]  # indices and small codes (int8 .. int64)
 
 NS_PER_S = 1_000_000_000
 
@@ -66,16 +68,23 @@ class Run:
     reversals: tuple[tuple[int, int, str], ...] = ()
     """(command index, ns, what) of the reversal pauses (SZGH Axis P68) in this trajectory on this
     machine: the pulse backend's (``ReversalPauses.by_command``), passed in by the driver."""
+    phases: int = -1
+    """How many phases the trajectory has, when it was not kept (:mod:`.streamed`: ``trajectory``
+    is then empty); -1: count ``trajectory``'s."""
+
+    @property
+    def phase_count(self) -> int:
+        return self.phases if self.phases >= 0 else self.trajectory.phase_count
 
 
 @dataclass(slots=True)
 class ProgramIndex:
     """Column-independent facts about the commands: line, tool and category of each."""
 
-    line_keys: list[tuple[int, int]]  # (source_id, 1-based line) in first-use order
+    line_keys: Sequence[tuple[int, int]]  # (source_id, 1-based line) in first-use order
     cmd_line: I64  # (n,) index into line_keys
-    cmd_tool: I64  # (n,) tool in the spindle (-1: none yet)
-    cmd_cat: I64  # (n,) index into CATEGORIES (-1: no time)
+    cmd_tool: Ints  # (n,) tool in the spindle (-1: none yet)
+    cmd_cat: Ints  # (n,) index into CATEGORIES (-1: no time)
     event_cmds: list[int]  # indices of commands that may be events
     op_dependent_lines: set[int] = field(default_factory=set)
 
@@ -88,7 +97,7 @@ class Column:
     motion_ns: int
     event_ns: int
     line_ns: I64  # (L,)
-    line_limit_ns: I64  # (L, K)
+    line_limit_ns: I64 | SparseRows  # (L, K)
     cmd_ns: I64  # (n,) motion + event time of each command
     category_ns: dict[str, int]
     tool_ns: dict[int, dict[str, int]]  # tool -> category -> ns
@@ -131,14 +140,14 @@ class LineTable:
     """
 
     files: list[str]  # distinct file names
-    file_of: I64  # (L,) index into files
-    line: I64  # (L,) 1-based line number
-    n: list[str]  # (L,) the block's N word as written ("N010"), "" if none
-    text: list[str]  # (L,) the line's text, stripped
+    file_of: Ints  # (L,) index into files
+    line: Ints  # (L,) 1-based line number
+    n: Sequence[str]  # (L,) the block's N word as written ("N010"), "" if none
+    text: Sequence[str]  # (L,) the line's text, stripped
     times_ns: I64  # (L, C)
-    category: I64  # (L,) index into ``categories`` (-1: none)
-    limited_by: I64  # (L,) index into LIMIT_KEYS (-1: none)
-    limits_ns: I64  # (L, K) primary column
+    category: Ints  # (L,) index into ``categories`` (-1: none)
+    limited_by: Ints  # (L,) index into LIMIT_KEYS (-1: none)
+    limits_ns: I64 | SparseRows  # (L, K) primary column (sparse in streamed reports)
     elapsed_ns: I64  # (L,) primary column: wall time at the end of the line's last command
     operator_dependent: npt.NDArray[np.bool_]  # (L,)
     categories: tuple[str, ...] = ()
@@ -194,7 +203,10 @@ class TimingReport:
         import numpy as np
 
         group: dict[str, int] = {}
-        of = np.fromiter((group.setdefault(n, len(group)) for n in self.lines.n), np.int64, len(self.lines))
+        names = self.lines.n
+        of = np.zeros(len(names), dtype=np.int64)
+        for lo in range(0, len(names), 4096):  # a chunk at a time: a streamed report reads its N words from the source
+            of[lo:lo + 4096] = [group.setdefault(n, len(group)) for n in names[lo:lo + 4096]]
         times = self.lines.times_ns
         sums = np.zeros((len(group), times.shape[1] if times.ndim == 2 else 0), dtype=np.int64)
         np.add.at(sums, of, times)
