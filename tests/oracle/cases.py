@@ -194,6 +194,20 @@ LATHE: dict[str, str] = {
     "g71_diameter_mode": _MM + "G7\n" + _TURN.replace("X", "X1") + "G0 X24 Z3\nG71 Q100 D0.5 I1\nM2\n",
     "g71_inch": ("G20 G18 F4\no100 sub\nG1 X0.1 Z0\nX0.2 Z-0.3\nX0.35 Z-0.5\no100 endsub\n"
                  "G0 X0.5 Z0.1\nG71 Q100 D0.01 I0.04 R0.01\nM2\n"),
+    # rs274 2.9 refuses a fillet/chamfer spanning less than 0.01 along the cut at an outside corner (G20 and
+    # G21 alike), drops one whose ends lie less than 0.001 apart, and cuts a larger one
+    "g70_small_fillet": _MM + ("o100 sub\nG1 X0 Z0\nG1 X0.5 Z-0.866 A0.01\nX0.85 Z-2.84\no100 endsub\n"
+                               "G0 X3 Z0.5\nG70 Q100\nM2\n"),
+    "g70_tiny_fillet": _MM + ("o100 sub\nG1 X0 Z0\nG1 X0.5 Z-0.866 A0.002\nX0.85 Z-2.84\no100 endsub\n"
+                              "G0 X3 Z0.5\nG70 Q100\nM2\n"),
+    "g70_fillet_large_enough": _MM + ("o100 sub\nG1 X0 Z0\nG1 X0.5 Z-0.866 A0.04\nX0.85 Z-2.84\no100 endsub\n"
+                                      "G0 X3 Z0.5\nG70 Q100\nM2\n"),
+    "g71_small_chamfer_inch": ("G20 G18 F4\no100 sub\nG1 X0 Z0\nG1 X0.5 Z-0.866 C0.01\nX0.85 Z-2.84\no100 endsub\n"
+                               "G0 X3 Z0.5\nG71 Q100 D0.01 I0.1\nM2\n"),
+    # an offset chamfer after an arc that runs backwards vanishes: the arc and the next line meet
+    "g71_offset_chamfer_vanishes": _MM + ("o100 sub\nG0 X-2.1233 Z-5.7903\nG2 X-5.6926 Z-11.0559 R12.5628 C0.3477\n"
+                                          "G1 X-9.2254 Z-12.485\no100 endsub\nG0 X-10.5188 Z-3.7951\n"
+                                          "G71 Q100 D0.7161 I0.4627\nM2\n"),
     "g71_no_q": _MM + "G0 X10 Z5\nG71 D0.5\nM2\n",
     "g71_no_sub": _MM + "G0 X10 Z5\nG71 Q999 D0.5\nM2\n",
     "g71_not_monotonic": _MM + "o100 sub\nG1 X2 Z0\nX4 Z-5\nX6 Z-2\no100 endsub\nG0 X10 Z2\nG71 Q100 D0.2\nM2\n",

@@ -41,8 +41,11 @@ def _unit(v: P) -> P:
     return (0.0, 0.0) if n < EPS else (v[0] / n, v[1] / n)
 
 
-def _cross(a: P, b: P) -> float:
+def cross(a: P, b: P) -> float:
     return a[0] * b[1] - a[1] * b[0]
+
+
+_cross = cross
 
 
 def tangent(p: Piece, at_end: bool) -> P:
@@ -259,7 +262,7 @@ def _trim(out: list[Piece], cur: Piece, vertex: P) -> None:
             out.append(cur)
             return
         trimmed = cut_piece(prev, end=x)
-        if len(out) > 1 and _reversed(prev, trimmed) and out[-2].c is None:
+        if len(out) > 1 and _reversed(prev, trimmed):
             out.pop()
             vertex = out[-1].b
             continue
