@@ -208,6 +208,11 @@ LATHE: dict[str, str] = {
     "g71_offset_chamfer_vanishes": _MM + ("o100 sub\nG0 X-2.1233 Z-5.7903\nG2 X-5.6926 Z-11.0559 R12.5628 C0.3477\n"
                                           "G1 X-9.2254 Z-12.485\no100 endsub\nG0 X-10.5188 Z-3.7951\n"
                                           "G71 Q100 D0.7161 I0.4627\nM2\n"),
+    # a fillet between two arcs: rs274 2.9 centres it at the crossing of the moved circles to the right of the
+    # line between their centres (as at offset corners), here a fillet that turns back: Not monotonic
+    "g71_arc_arc_fillet": _MM + ("o100 sub\nG1 X3.7803 Z-5.7503\nG3 X6.3925 Z-8.7687 R7.3696 A0.2599\n"
+                                 "G3 X5.718 Z-12.5775 R4.9456\no100 endsub\nG0 X9.7822 Z-3.3201\n"
+                                 "G71 Q100 D0.7357 I1.3536 R0.8576\nM2\n"),
     "g71_no_q": _MM + "G0 X10 Z5\nG71 D0.5\nM2\n",
     "g71_no_sub": _MM + "G0 X10 Z5\nG71 Q999 D0.5\nM2\n",
     "g71_not_monotonic": _MM + "o100 sub\nG1 X2 Z0\nX4 Z-5\nX6 Z-2\no100 endsub\nG0 X10 Z2\nG71 Q100 D0.2\nM2\n",

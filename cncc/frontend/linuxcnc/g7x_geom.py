@@ -278,7 +278,7 @@ def corner(p: Piece, q: Piece, size: float, chamfer: bool) -> tuple[Piece, Piece
         return None
     side = -size if turn > 0 else size  # the centre lies inside the turn
     try:
-        c = meet(_shift(p, side), _shift(q, side), p.b)
+        c = meet(_shift(p, side), _shift(q, side), p.b, rs274_arcs=True)
     except ValueError:
         return None
     if c is None:
