@@ -11,6 +11,10 @@ _SQ = "O<sq> sub\nG91 G1 X#1 F100\nG90\nO<sq> endsub\n"
 CASES: dict[str, str | tuple[str, str] | tuple[str, str, dict[str, str]]] = {
     "mod_negative": "G21 F100\n#1 = [7 MOD -3]\nG1 X#1\n#2 = [-7 MOD 3]\nG1 Y#2\nM2\n",
     "g0_g80": "G21\nG0 G80 X5\nM2\n",
+    # issue 24, safety: a dwell and a move in one block run both, the dwell first (never a dropped move)
+    "dwell_with_feed": "G21 F100\nG1 X1\nG4 P0.5 G1 Z-1\nM2\n",
+    "dwell_with_rapid": "G21\nG04 P0.25 G00 X3 Y2\nM2\n",
+    "dwell_with_modal_feed": "G21 F100\nG1 X1\nG4 P0.1 Y2\nM2\n",
     "g80_g1": "G21 F100\nG1 G80 X5\nM2\n",
     "no_program_end": "G21\nG0 X1\n",
     "percent_without_end": "%\nG21\nG0 X1\n",
@@ -213,6 +217,11 @@ LATHE: dict[str, str] = {
     "g71_arc_arc_fillet": _MM + ("o100 sub\nG1 X3.7803 Z-5.7503\nG3 X6.3925 Z-8.7687 R7.3696 A0.2599\n"
                                  "G3 X5.718 Z-12.5775 R4.9456\no100 endsub\nG0 X9.7822 Z-3.3201\n"
                                  "G71 Q100 D0.7357 I1.3536 R0.8576\nM2\n"),
+    # an offset chamfer whose start, trimmed at the arc before it, lies past its end: it vanishes as well
+    "g71_offset_chamfer_trimmed_away": _MM + ("o100 sub\nG0 X-6.4631 Z-4.7339\nG1 X-5.1028 Z-7.7577\n"
+                                              "G1 X-5.8226 Z-9.6477\nG2 X-4.3045 Z-11.9562 R2.6055 C0.1036\n"
+                                              "G1 X-4.0215 Z-14.8976\nX-6.4535 Z-18.2041\no100 endsub\n"
+                                              "G0 X-9.5599 Z-3.0651\nG71 Q100 D0.6885 I0.438 R0.3704\nM2\n"),
     "g71_no_q": _MM + "G0 X10 Z5\nG71 D0.5\nM2\n",
     "g71_no_sub": _MM + "G0 X10 Z5\nG71 Q999 D0.5\nM2\n",
     "g71_not_monotonic": _MM + "o100 sub\nG1 X2 Z0\nX4 Z-5\nX6 Z-2\no100 endsub\nG0 X10 Z2\nG71 Q100 D0.2\nM2\n",
