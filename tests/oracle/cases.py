@@ -222,6 +222,10 @@ LATHE: dict[str, str] = {
                                               "G1 X-5.8226 Z-9.6477\nG2 X-4.3045 Z-11.9562 R2.6055 C0.1036\n"
                                               "G1 X-4.0215 Z-14.8976\nX-6.4535 Z-18.2041\no100 endsub\n"
                                               "G0 X-9.5599 Z-3.0651\nG71 Q100 D0.6885 I0.438 R0.3704\nM2\n"),
+    # G72.1's bridged pass at the height of a corner arc's top: the feed to the arc, not the arc
+    "g72_1_bridge_at_arc_top": _MM + ("o100 sub\nG1 X-2.0806 Z5.3739\nX-7.2317 Z4.4919\nG1 X-8.7226 Z7.827\n"
+                                      "X-12.245 Z8.2645\nG1 X-16.6982 Z8.2746\nG1 X-19.8378 Z8.1233\no100 endsub\n"
+                                      "G0 X0.601 Z10.819\nG72.1 Q100 D0.3788 I0.6816 R0.4558\nM2\n"),
     "g71_no_q": _MM + "G0 X10 Z5\nG71 D0.5\nM2\n",
     "g71_no_sub": _MM + "G0 X10 Z5\nG71 Q999 D0.5\nM2\n",
     "g71_not_monotonic": _MM + "o100 sub\nG1 X2 Z0\nX4 Z-5\nX6 Z-2\no100 endsub\nG0 X10 Z2\nG71 Q100 D0.2\nM2\n",
