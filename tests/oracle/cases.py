@@ -226,6 +226,9 @@ LATHE: dict[str, str] = {
     "g72_1_bridge_at_arc_top": _MM + ("o100 sub\nG1 X-2.0806 Z5.3739\nX-7.2317 Z4.4919\nG1 X-8.7226 Z7.827\n"
                                       "X-12.245 Z8.2645\nG1 X-16.6982 Z8.2746\nG1 X-19.8378 Z8.1233\no100 endsub\n"
                                       "G0 X0.601 Z10.819\nG72.1 Q100 D0.3788 I0.6816 R0.4558\nM2\n"),
+    # a profile of one move (the approach): rs274 2.9 moves nothing but jumps to its end; cncc refuses (allow.toml)
+    "g71_one_move_profile": _MM + "o100 sub\nG1 X2 Z-5\no100 endsub\nG0 X10 Z2\nG71 Q100 D0.3 I1\nG0 X12\nM2\n",
+    "g71_two_move_profile": _MM + "o100 sub\nG1 X2 Z-1\nG1 X5 Z-6\no100 endsub\nG0 X10 Z2\nG71 Q100 D0.3 I1\nG0 X12\nM2\n",
     "g71_no_q": _MM + "G0 X10 Z5\nG71 D0.5\nM2\n",
     "g71_no_sub": _MM + "G0 X10 Z5\nG71 Q999 D0.5\nM2\n",
     "g71_not_monotonic": _MM + "o100 sub\nG1 X2 Z0\nX4 Z-5\nX6 Z-2\no100 endsub\nG0 X10 Z2\nG71 Q100 D0.2\nM2\n",
