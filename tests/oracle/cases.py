@@ -228,7 +228,8 @@ LATHE: dict[str, str] = {
                                       "G0 X0.601 Z10.819\nG72.1 Q100 D0.3788 I0.6816 R0.4558\nM2\n"),
     # a profile of one move (the approach): rs274 2.9 moves nothing but jumps to its end; cncc refuses (allow.toml)
     "g71_one_move_profile": _MM + "o100 sub\nG1 X2 Z-5\no100 endsub\nG0 X10 Z2\nG71 Q100 D0.3 I1\nG0 X12\nM2\n",
-    "g71_two_move_profile": _MM + "o100 sub\nG1 X2 Z-1\nG1 X5 Z-6\no100 endsub\nG0 X10 Z2\nG71 Q100 D0.3 I1\nG0 X12\nM2\n",
+    "g71_two_move_profile": _MM + ("o100 sub\nG1 X2 Z-1\nG1 X5 Z-6\no100 endsub\nG0 X10 Z2\n"
+                                   "G71 Q100 D0.3 I1\nG0 X12\nM2\n"),
     "g71_no_q": _MM + "G0 X10 Z5\nG71 D0.5\nM2\n",
     "g71_no_sub": _MM + "G0 X10 Z5\nG71 Q999 D0.5\nM2\n",
     "g71_not_monotonic": _MM + "o100 sub\nG1 X2 Z0\nX4 Z-5\nX6 Z-2\no100 endsub\nG0 X10 Z2\nG71 Q100 D0.2\nM2\n",
