@@ -368,8 +368,8 @@ def report(result: Any, rep: Reporting, stream: Any = None) -> None:
 def write_rules(result: Any, opts: Any, ns: argparse.Namespace) -> None:
     """-M/-MM (instead of the output) and -MD/-MMD (beside it): the make rules of the inputs."""
     from cncc import dialects
-    from cncc.driver import write_output
     from cncc.makedeps import default_target, rule, under
+    from cncc.outfile import write_output
 
     library = os.path.dirname(dialects.__file__)
     user_only = ns.list_deps_user or ns.write_deps_user
@@ -393,8 +393,10 @@ def write_rules(result: Any, opts: Any, ns: argparse.Namespace) -> None:
 
 def run(opts: Any, rep: Reporting | None = None, ns: argparse.Namespace | None = None) -> int:
     from cncc import diagnostics as dg
-    from cncc.driver import compile_files, compile_to, streams_output, write_output, writes_own_output
+    from cncc.driver import compile_files, writes_own_output
     from cncc.numwarn import recorded, to_diagnostics
+    from cncc.outfile import write_output
+    from cncc.output_stream import compile_to, streams_output
 
     rep = rep if rep is not None else Reporting()
     streamed = streams_output(opts)

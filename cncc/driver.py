@@ -13,7 +13,7 @@ import sys
 from collections.abc import Callable, Iterable, Iterator
 from dataclasses import dataclass, field
 from functools import partial
-from typing import IO, Any, TextIO, TypeVar
+from typing import Any, TextIO, TypeVar
 
 from cncc import diagnostics as dg
 from cncc.diagnostics import DiagnosticSink, WarningPolicy
@@ -21,6 +21,7 @@ from cncc.dialects import Dialect, DialectError, load_dialect
 from cncc.ir import Command, Frame, Units, Vec6
 from cncc.ir.batch import Item
 from cncc.ir.machine import Axis, MachineModel
+from cncc.outfile import write_stream
 from cncc.source import NO_SPAN, SourceFile, SourceMap, Span
 
 T = TypeVar("T")
@@ -544,7 +545,7 @@ def new_sink(opts: Options) -> DiagnosticSink:
 def compile_files(opts: Options, stdin: TextIO | None = None, out: Callable[[str], Any] | None = None,
                   sink: DiagnosticSink | None = None) -> Result:
     """Compile ``opts.inputs``; the output text is ``Result.output``, or, with ``out``, handed to
-    ``out`` piece by piece as the backend makes it (streaming: :func:`compile_to`)."""
+    ``out`` piece by piece as the backend makes it (streaming: :func:`cncc.output_stream.compile_to`)."""
     sink = sink if sink is not None else new_sink(opts)
     sources = SourceMap()
     result = Result(sink, sources)
@@ -563,7 +564,8 @@ def compile_files(opts: Options, stdin: TextIO | None = None, out: Callable[[str
 
     ins = instrumentation(opts, sources)
     manager = PassManager(ins)
-    chunks = _Pieces(out)
+    parts: list[str] = []
+    emit = out if out is not None else parts.append
     inis: dict[str, Any] = {}
     ini_seen: dict[str, bool] = {}  # its bad values reported once
     base_dialect, base_machine, base_opts = dialect, machine, opts
@@ -606,106 +608,39 @@ def compile_files(opts: Options, stdin: TextIO | None = None, out: Callable[[str
         row = f"backend (--emit={opts.emit})"
         backend = partial(run_backend, cmds, src, sources, dialect, machine, opts, sink, keep_runs=result.runs,
                           manager=manager)
-        chunks.extend(manager.timed(manager.call(row, backend), row))
-    result.output = chunks.finish()
+        _hand_on(manager.timed(manager.call(row, backend), row), emit)
+    result.output = "".join(parts)
     result.pass_report = pass_report(ins, opts, sink)
     return result
 
 
-FAST_SYNTAX_MIN_CHARS = 1 << 16  # a smaller program is checked sooner than numpy is imported
+def _hand_on(pieces: Iterable[str], out: Callable[[str], Any]) -> None:
+    for piece in pieces:
+        out(piece)
 
 
 def fast_syntax_only(src: SourceFile, dialect: Dialect, machine: MachineModel, opts: Options, sink: DiagnosticSink,
                      sources: SourceMap, deps: list[str], ini: Any, manager: Any) -> bool:
-    """-fsyntax-only with the default passes on a fast-path dialect: the front end's sparse stream of
-    cncc/frontend/syntax_fast.py (plain blocks decided with arrays) through the path passes, the
-    same diagnostics as the whole stream.  False (nothing done) when it does not apply; a program
-    that is not straight-line after all starts again on the front end, its diagnostics forgotten."""
-    if (len(src.text) < FAST_SYNTAX_MIN_CHARS or opts.expand or opts.passes or opts.verify_each
-            or opts.print_after or opts.time_passes or opts.emit in MACHINE_EMITS or opts.emit == "gcode"):
-        return False
-    from cncc.frontend.syntax_fast import ArcLimits, NotStraight, applies, lower_for_check
+    """-fsyntax-only with the default passes on a fast-path dialect (:mod:`cncc.fast_syntax`, the
+    same diagnostics as the whole stream); False (nothing done) when it does not apply."""
+    from cncc import fast_syntax
 
-    if not applies(dialect):
+    if not fast_syntax.wanted(src, dialect, opts):
         return False
-    from cncc.frontend import lower
-    from cncc.frontend.tape import before_tape_end
     from cncc.pipeline.builder import path_options
 
     if ini is None and opts.ini_file:
         ini = load_ini(opts, sink, sources)
     iopts = interp_options(opts, machine, sink)
     mopts = macro_options(opts, sink, sources, deps, ini)
-    a = path_options(pipeline_config(opts), dialect)["arc-check"]
-    limits = ArcLimits(a["abs_tol_mm"], a["rel_tol"], a["abs_tol_inch_mm"], a["max_abs_factor"])
-    checked = before_tape_end(src) if dialect.raw.get("tape_end") else src
-    mark = (len(sink.items), sink.dropped, sink.suppressed, sink.errors_kept, sink.over_limit)
-    try:
-        for _ in path_passes(until_limit(lower_for_check(checked, dialect, sink, iopts, limits), sink),
-                             dialect, machine, opts, sink, manager):
+
+    def run_passes(cmds: Iterator[Command]) -> None:
+        for _ in path_passes(until_limit(cmds, sink), dialect, machine, opts, sink, manager):
             pass
-    except NotStraight:
-        del sink.items[mark[0]:]
-        sink.dropped, sink.suppressed, sink.errors_kept, sink.over_limit = mark[1:]
-        for _ in path_passes(until_limit(lower(src, dialect, sink, iopts, mopts), sink),
-                             dialect, machine, opts, sink, manager):
-            pass
+
+    fast_syntax.check(src, dialect, sink, iopts, mopts, path_options(pipeline_config(opts), dialect)["arc-check"],
+                      run_passes)
     return True
-class _Pieces:
-    """The output pieces: kept (joined at the end), or passed on to ``out`` in blocks of about
-    ``BLOCK`` characters, so that memory holds one block, not the output."""
-
-    BLOCK = 1 << 16
-
-    def __init__(self, out: Callable[[str], Any] | None) -> None:
-        self.out, self.size = out, 0
-        self.parts: list[str] = []
-
-    def extend(self, pieces: Iterable[str]) -> None:
-        parts, out = self.parts, self.out
-        for piece in pieces:
-            parts.append(piece)
-            if out is not None:
-                self.size += len(piece)
-                if self.size >= self.BLOCK:
-                    out("".join(parts))
-                    parts.clear()
-                    self.size = 0
-
-    def finish(self) -> str:
-        text = "".join(self.parts)
-        self.parts = []
-        if self.out is None:
-            return text
-        if text:
-            self.out(text)
-        return ""
-
-
-def streams_output(opts: Options) -> bool:
-    """True when the command line may stream the output as it is made (:func:`compile_to`)."""
-    return not (opts.syntax_only or opts.list_deps or writes_own_output(opts))
-
-
-def compile_to(opts: Options, stdout: TextIO | None = None) -> tuple[Result, bool]:
-    """Compile and write the output as it is made: to standard output, or to ``opts.output``
-    through :func:`write_stream` (a regular file atomically: a temporary file renamed into place
-    when no error was reported; a device or FIFO in place) -- peak memory holds a block of the
-    output, not all of it.  (Result, whether the output was written)."""
-    sink = new_sink(opts)
-    path = opts.output
-    if path in (None, "-"):
-        stream = stdout or sys.stdout
-        return compile_files(opts, out=stream.write, sink=sink), True
-    done: list[Result] = []
-
-    def write(fh: IO[bytes]) -> None:
-        done.append(compile_files(opts, out=lambda text: fh.write(text.encode("utf-8")), sink=sink))
-
-    written = write_stream(path, opts.inputs, sink, write)
-    if not done:  # refused or not writable before compiling: compile for the diagnostics alone
-        done.append(compile_files(opts, out=lambda text: None, sink=sink))
-    return done[0], written
 
 
 def _file_setup(base_opts: Options, base_dialect: Dialect, base_machine: MachineModel, path: str,
@@ -901,30 +836,3 @@ def reversal_events(traj: Any, machine: MachineModel, opts: Options) -> tuple[tu
 
     mode = opts.pulse_mode if opts.pulse_mode in MODES else "exact"
     return tuple(reversal_pauses(traj, machine, mode=mode).by_command(traj.cmd_index))
-
-
-# ---- outputs ---------------------------------------------------------------------------------
-def write_stream(path: str, inputs: list[str], sink: DiagnosticSink, write: Callable[[IO[bytes]], Any],
-                 keep_on_errors: bool = False) -> bool:
-    """Stream ``write(binary file)`` into ``path`` (atomically for regular files, in place for devices and
-    FIFOs: :mod:`cncc.outfile`); nothing is kept if errors were reported (unless ``keep_on_errors``)."""
-    real = os.path.realpath(path)
-    if any(inp != "-" and os.path.exists(inp) and os.path.realpath(inp) == real for inp in inputs):
-        sink.emit(dg.OUTPUT_IS_INPUT, NO_SPAN, f"refusing to overwrite the input file {path}")
-        return False
-    from cncc.outfile import write_file
-
-    try:
-        return write_file(path, write, lambda: keep_on_errors or not sink.has_errors)
-    except OSError as exc:
-        sink.emit(dg.CANNOT_WRITE, NO_SPAN, f"cannot write {path}: {exc.strerror or exc}")
-        return False
-
-
-def write_output(text: str, path: str | None, inputs: list[str], sink: DiagnosticSink,
-                 stdout: TextIO | None = None) -> bool:
-    """Write ``text`` to ``path`` (``-``/None: stdout) through :func:`write_stream`; never over an input."""
-    if path is None or path == "-":
-        (stdout or sys.stdout).write(text)
-        return True
-    return write_stream(path, inputs, sink, lambda fh: fh.write(text.encode("utf-8")))

@@ -15,6 +15,9 @@ file.  Two cases, chosen by what ``PATH`` is *now*:
 In both cases the bytes are produced first (in memory-light form: a temporary file) and
 only reach the target when ``keep()`` says yes, so a run that reported errors writes
 nothing.
+
+:func:`write_stream` and :func:`write_output` are the compiler's way in (the driver, the
+command line): never over an input file, problems reported as diagnostics.
 """
 
 from __future__ import annotations
@@ -22,9 +25,14 @@ from __future__ import annotations
 import os
 import shutil
 import stat
+import sys
 import tempfile
 from collections.abc import Callable
-from typing import IO, Any
+from typing import IO, Any, TextIO
+
+from cncc import diagnostics as dg
+from cncc.diagnostics import DiagnosticSink
+from cncc.source import NO_SPAN
 
 CHUNK_BYTES = 1 << 16
 
@@ -88,4 +96,28 @@ def _write_atomic(real: str, write: Callable[[IO[bytes]], Any], keep: Callable[[
     return True
 
 
-__all__ = ["current_umask", "is_special", "write_file"]
+def write_stream(path: str, inputs: list[str], sink: DiagnosticSink, write: Callable[[IO[bytes]], Any],
+                 keep_on_errors: bool = False) -> bool:
+    """Stream ``write(binary file)`` into ``path`` (atomically for regular files, in place for devices and
+    FIFOs: :func:`write_file`); nothing is kept if errors were reported (unless ``keep_on_errors``)."""
+    real = os.path.realpath(path)
+    if any(inp != "-" and os.path.exists(inp) and os.path.realpath(inp) == real for inp in inputs):
+        sink.emit(dg.OUTPUT_IS_INPUT, NO_SPAN, f"refusing to overwrite the input file {path}")
+        return False
+    try:
+        return write_file(path, write, lambda: keep_on_errors or not sink.has_errors)
+    except OSError as exc:
+        sink.emit(dg.CANNOT_WRITE, NO_SPAN, f"cannot write {path}: {exc.strerror or exc}")
+        return False
+
+
+def write_output(text: str, path: str | None, inputs: list[str], sink: DiagnosticSink,
+                 stdout: TextIO | None = None) -> bool:
+    """Write ``text`` to ``path`` (``-``/None: stdout) through :func:`write_stream`; never over an input."""
+    if path is None or path == "-":
+        (stdout or sys.stdout).write(text)
+        return True
+    return write_stream(path, inputs, sink, lambda fh: fh.write(text.encode("utf-8")))
+
+
+__all__ = ["current_umask", "is_special", "write_file", "write_output", "write_stream"]

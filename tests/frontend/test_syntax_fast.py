@@ -19,7 +19,7 @@ from typing import Any
 import numpy as np
 import pytest
 
-from cncc import cli, driver
+from cncc import cli, driver, fast_syntax
 from cncc import diagnostics as dg
 from cncc.dialects import load_dialect
 from cncc.frontend import fastpath, plainscan, syntax_fast
@@ -42,7 +42,7 @@ def slow_path(monkeypatch: pytest.MonkeyPatch) -> Iterator[None]:
 @pytest.fixture(autouse=True)
 def small_programs_too(monkeypatch: pytest.MonkeyPatch) -> None:
     """The checker skips programs under 64 KB (numpy's import costs more); these tests are smaller."""
-    monkeypatch.setattr(driver, "FAST_SYNTAX_MIN_CHARS", 0)
+    monkeypatch.setattr(fast_syntax, "FAST_SYNTAX_MIN_CHARS", 0)
 
 
 def check(path: Path, dialect: str | None, monkeypatch: pytest.MonkeyPatch,
@@ -388,7 +388,7 @@ def test_the_tape_mark_reads_as_the_grammar_reads_it(dialect: str) -> None:
 
 
 def test_small_programs_skip_the_checker(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
-    monkeypatch.setattr(driver, "FAST_SYNTAX_MIN_CHARS", 1 << 16)
+    monkeypatch.setattr(fast_syntax, "FAST_SYNTAX_MIN_CHARS", 1 << 16)
     small = tmp_path / "small.nc"
     small.write_text(cam_file(1000, False))
     assert check(small, "syntec", monkeypatch)[2] == []
