@@ -11,6 +11,10 @@ _SQ = "O<sq> sub\nG91 G1 X#1 F100\nG90\nO<sq> endsub\n"
 CASES: dict[str, str | tuple[str, str] | tuple[str, str, dict[str, str]]] = {
     "mod_negative": "G21 F100\n#1 = [7 MOD -3]\nG1 X#1\n#2 = [-7 MOD 3]\nG1 Y#2\nM2\n",
     "g0_g80": "G21\nG0 G80 X5\nM2\n",
+    # issue 24, safety: a dwell and a move in one block run both, the dwell first (never a dropped move)
+    "dwell_with_feed": "G21 F100\nG1 X1\nG4 P0.5 G1 Z-1\nM2\n",
+    "dwell_with_rapid": "G21\nG04 P0.25 G00 X3 Y2\nM2\n",
+    "dwell_with_modal_feed": "G21 F100\nG1 X1\nG4 P0.1 Y2\nM2\n",
     "g80_g1": "G21 F100\nG1 G80 X5\nM2\n",
     "no_program_end": "G21\nG0 X1\n",
     "percent_without_end": "%\nG21\nG0 X1\n",
@@ -194,6 +198,38 @@ LATHE: dict[str, str] = {
     "g71_diameter_mode": _MM + "G7\n" + _TURN.replace("X", "X1") + "G0 X24 Z3\nG71 Q100 D0.5 I1\nM2\n",
     "g71_inch": ("G20 G18 F4\no100 sub\nG1 X0.1 Z0\nX0.2 Z-0.3\nX0.35 Z-0.5\no100 endsub\n"
                  "G0 X0.5 Z0.1\nG71 Q100 D0.01 I0.04 R0.01\nM2\n"),
+    # rs274 2.9 refuses a fillet/chamfer spanning less than 0.01 along the cut at an outside corner (G20 and
+    # G21 alike), drops one whose ends lie less than 0.001 apart, and cuts a larger one
+    "g70_small_fillet": _MM + ("o100 sub\nG1 X0 Z0\nG1 X0.5 Z-0.866 A0.01\nX0.85 Z-2.84\no100 endsub\n"
+                               "G0 X3 Z0.5\nG70 Q100\nM2\n"),
+    "g70_tiny_fillet": _MM + ("o100 sub\nG1 X0 Z0\nG1 X0.5 Z-0.866 A0.002\nX0.85 Z-2.84\no100 endsub\n"
+                              "G0 X3 Z0.5\nG70 Q100\nM2\n"),
+    "g70_fillet_large_enough": _MM + ("o100 sub\nG1 X0 Z0\nG1 X0.5 Z-0.866 A0.04\nX0.85 Z-2.84\no100 endsub\n"
+                                      "G0 X3 Z0.5\nG70 Q100\nM2\n"),
+    "g71_small_chamfer_inch": ("G20 G18 F4\no100 sub\nG1 X0 Z0\nG1 X0.5 Z-0.866 C0.01\nX0.85 Z-2.84\no100 endsub\n"
+                               "G0 X3 Z0.5\nG71 Q100 D0.01 I0.1\nM2\n"),
+    # an offset chamfer after an arc that runs backwards vanishes: the arc and the next line meet
+    "g71_offset_chamfer_vanishes": _MM + ("o100 sub\nG0 X-2.1233 Z-5.7903\nG2 X-5.6926 Z-11.0559 R12.5628 C0.3477\n"
+                                          "G1 X-9.2254 Z-12.485\no100 endsub\nG0 X-10.5188 Z-3.7951\n"
+                                          "G71 Q100 D0.7161 I0.4627\nM2\n"),
+    # a fillet between two arcs: rs274 2.9 centres it at the crossing of the moved circles to the right of the
+    # line between their centres (as at offset corners), here a fillet that turns back: Not monotonic
+    "g71_arc_arc_fillet": _MM + ("o100 sub\nG1 X3.7803 Z-5.7503\nG3 X6.3925 Z-8.7687 R7.3696 A0.2599\n"
+                                 "G3 X5.718 Z-12.5775 R4.9456\no100 endsub\nG0 X9.7822 Z-3.3201\n"
+                                 "G71 Q100 D0.7357 I1.3536 R0.8576\nM2\n"),
+    # an offset chamfer whose start, trimmed at the arc before it, lies past its end: it vanishes as well
+    "g71_offset_chamfer_trimmed_away": _MM + ("o100 sub\nG0 X-6.4631 Z-4.7339\nG1 X-5.1028 Z-7.7577\n"
+                                              "G1 X-5.8226 Z-9.6477\nG2 X-4.3045 Z-11.9562 R2.6055 C0.1036\n"
+                                              "G1 X-4.0215 Z-14.8976\nX-6.4535 Z-18.2041\no100 endsub\n"
+                                              "G0 X-9.5599 Z-3.0651\nG71 Q100 D0.6885 I0.438 R0.3704\nM2\n"),
+    # G72.1's bridged pass at the height of a corner arc's top: the feed to the arc, not the arc
+    "g72_1_bridge_at_arc_top": _MM + ("o100 sub\nG1 X-2.0806 Z5.3739\nX-7.2317 Z4.4919\nG1 X-8.7226 Z7.827\n"
+                                      "X-12.245 Z8.2645\nG1 X-16.6982 Z8.2746\nG1 X-19.8378 Z8.1233\no100 endsub\n"
+                                      "G0 X0.601 Z10.819\nG72.1 Q100 D0.3788 I0.6816 R0.4558\nM2\n"),
+    # a profile of one move (the approach): rs274 2.9 moves nothing but jumps to its end; cncc refuses (allow.toml)
+    "g71_one_move_profile": _MM + "o100 sub\nG1 X2 Z-5\no100 endsub\nG0 X10 Z2\nG71 Q100 D0.3 I1\nG0 X12\nM2\n",
+    "g71_two_move_profile": _MM + ("o100 sub\nG1 X2 Z-1\nG1 X5 Z-6\no100 endsub\nG0 X10 Z2\n"
+                                   "G71 Q100 D0.3 I1\nG0 X12\nM2\n"),
     "g71_no_q": _MM + "G0 X10 Z5\nG71 D0.5\nM2\n",
     "g71_no_sub": _MM + "G0 X10 Z5\nG71 Q999 D0.5\nM2\n",
     "g71_not_monotonic": _MM + "o100 sub\nG1 X2 Z0\nX4 Z-5\nX6 Z-2\no100 endsub\nG0 X10 Z2\nG71 Q100 D0.2\nM2\n",

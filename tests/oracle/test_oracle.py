@@ -19,10 +19,9 @@ pytestmark = pytest.mark.skipif(rs274_path() is None, reason="LinuxCNC's rs274 i
 FAST_COUNT = 6
 SLOW_COUNT = 200
 # Features whose classes of disagreement are not all fixed yet (issue 24); they run, and
-# report their disagreements, as expected failures.
-# lathe_roughing: G70-G72 written from the manual and black-box runs; the classes listed in
-# docs/dialects-notes.md (G72 with the stock below the profile, rs274's G71 endless loop, ...) are open.
-OPEN: frozenset[str] = frozenset({"lathe_roughing"})
+# report their disagreements, as expected failures.  None now: lathe_roughing agrees or is
+# allow-listed (tests/oracle/allow.toml) since session 2026-12-02 c.
+OPEN: frozenset[str] = frozenset()
 
 
 def _check(feature: str, count: int, seed: int) -> None:

@@ -288,6 +288,8 @@ class LinuxcncExecutor:
 
     def _drop_g80(self, words: tuple[Word, ...]) -> tuple[Word, ...]:
         """G80 beside another motion code (``G0 G80 X5``): LinuxCNC ignores the G80."""
+        if sum(1 for w in words if w.letter == "G") < 2:
+            return words
         motions = [w for w in words if w.letter == "G" and (c := self.it.dialect.code("G", round(w.value * 10)))
                    is not None and c.group == "motion"]
         if len(motions) < 2:

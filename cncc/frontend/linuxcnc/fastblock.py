@@ -31,12 +31,13 @@ _AXES = {"X": 0, "Y": 1, "Z": 2}
 _MOTION = {0.0: "rapid", 1.0: "linear"}
 
 
-def plain_state(it: Interpreter) -> bool:
-    """The interpreter's modes leave a straight move nothing else to do."""
+def plain_state(it: Interpreter, *, own_motion: bool = False) -> bool:
+    """The interpreter's modes leave a straight move nothing else to do (``own_motion``: the block names
+    G0 or G1, so the modal motion before it, an arc say, does not matter)."""
     from cncc.frontend.rs274 import state
 
     f, m = it.frame, it.modal
-    if it.ended or m.cycle or m.per_rev or m.motion not in ("rapid", "linear", "none"):
+    if it.ended or m.cycle or m.per_rev or (not own_motion and m.motion not in ("rapid", "linear", "none")):
         return False
     if f.comp_side is not CompSide.OFF or f.polar is not None or f.scaling is not None or f.mirror is not None \
             or f.rotation is not None or f.machine_coords:
@@ -76,7 +77,7 @@ def run_plain(it: Interpreter, block: Block, words: tuple[Word, ...]) -> list[Co
     if block.statements or block.comments:
         return None
     got = _plain_words(it.modal.motion, words)
-    if got is None or not plain_state(it):
+    if got is None or not plain_state(it, own_motion=any(w.letter == "G" for w in words)):
         return None
     motion, axes, feed_word = got
     modal = it.modal

@@ -26,6 +26,7 @@ from dataclasses import dataclass, field
 from cncc.frontend.linuxcnc.g7x_geom import EPS, P, Piece, at_u, cut_piece, split_extrema
 
 LEVEL_EPS = 1e-7  # a level this close to a peak still cuts it
+GRAZE = 1e-6
 
 
 @dataclass(frozen=True, slots=True)
@@ -177,7 +178,8 @@ class Rough:
             start = p.a if p.a[1] >= env - EPS else at_u(p, env) or p.a
             if not (n == 0 and k and p.c is not None and p.c == self.pieces[k - 1].c):
                 self.feed(start)  # (an arc that climbs out of the first pocket goes on as one move)
-            self.along(cut_piece(p, start=start))
+            if not _grazes(p, env):
+                self.along(cut_piece(p, start=start))
             env = max(env, p.b[1])
         self.feed((self.last[0], max(env, self.last[1])))  # a pocket at the end: bridged too
         self.close()
@@ -204,6 +206,12 @@ class Rough:
         """The feed from the profile's end across to the start height (none when the end lies above it)."""
         if self.last[1] <= self.start[1] + EPS:
             self.feed((self.last[0], self.start[1]))
+
+
+def _grazes(p: Piece, env: float) -> bool:
+    """An arc that rises less than GRAZE above the bridged height (the top of a corner arc the level line
+    touches): rs274 2.9 prints the feed to its start, not the arc, in the bridged pass."""
+    return p.c is not None and abs(p.a[1] - env) < GRAZE and p.b[1] - env < GRAZE
 
 
 def _line_at(a: P, b: P, level: float) -> float:

@@ -41,8 +41,11 @@ def _unit(v: P) -> P:
     return (0.0, 0.0) if n < EPS else (v[0] / n, v[1] / n)
 
 
-def _cross(a: P, b: P) -> float:
+def cross(a: P, b: P) -> float:
     return a[0] * b[1] - a[1] * b[0]
+
+
+_cross = cross
 
 
 def tangent(p: Piece, at_end: bool) -> P:
@@ -191,6 +194,7 @@ def offset(pieces: list[Piece], d: float) -> list[Piece]:
         return list(pieces)
     moved = _moved(pieces, d)
     out: list[Piece] = [moved[0][0]]
+    raw: list[Piece] = [moved[0][0]]  # each piece of out before it was trimmed
     for k in range(1, len(moved)):
         cur, orig, joined = moved[k]
         prev = out[-1]
@@ -198,11 +202,13 @@ def offset(pieces: list[Piece], d: float) -> list[Piece]:
         turn = _cross(tangent(moved[k - 1][1], True), tangent(orig, False))
         if joined or math.dist(prev.b, cur.a) < 1e-9:
             out.append(cur)
+            raw.append(cur)
         elif turn * d > 0 and abs(prev.b[0] - cur.a[0]) >= ROUND_MIN_W:  # the moved pieces part: round it
             out.append(Piece(prev.b, cur.a, vertex, d > 0))
             out.append(cur)
+            raw += out[-2:]
         else:
-            _trim(out, cur, vertex)
+            _trim(out, raw, cur, vertex)
     return out
 
 
@@ -247,24 +253,27 @@ def _reversed(p: Piece, q: Piece) -> bool:
                                               + (q.b[1] - q.a[1]) * (p.b[1] - p.a[1])) <= 0
 
 
-def _trim(out: list[Piece], cur: Piece, vertex: P) -> None:
+def _trim(out: list[Piece], raw: list[Piece], cur: Piece, vertex: P) -> None:
     """Join ``cur`` to the end of ``out`` at an inside corner: both trimmed to where they cross.  A line
-    trimmed away (a short piece, e.g. a chamfer, between two inside corners) is dropped and its
-    neighbours meet instead."""
+    trimmed away (a short piece, e.g. a chamfer, between two inside corners, or one whose start was
+    trimmed past its end) is dropped and its neighbours meet instead.  ``raw``: out's pieces untrimmed."""
     while True:
         prev = out[-1]
         x = meet(prev, cur, vertex, rs274_arcs=True)
         if x is None:
             out.append(Piece(prev.b, cur.a))
             out.append(cur)
+            raw += out[-2:]
             return
         trimmed = cut_piece(prev, end=x)
-        if len(out) > 1 and _reversed(prev, trimmed) and out[-2].c is None:
+        if len(out) > 1 and _reversed(raw[-1], trimmed):
             out.pop()
+            raw.pop()
             vertex = out[-1].b
             continue
         out[-1] = trimmed
         out.append(cut_piece(cur, start=x))
+        raw.append(cur)
         return
 
 
@@ -275,7 +284,7 @@ def corner(p: Piece, q: Piece, size: float, chamfer: bool) -> tuple[Piece, Piece
         return None
     side = -size if turn > 0 else size  # the centre lies inside the turn
     try:
-        c = meet(_shift(p, side), _shift(q, side), p.b)
+        c = meet(_shift(p, side), _shift(q, side), p.b, rs274_arcs=True)
     except ValueError:
         return None
     if c is None:

@@ -16,7 +16,7 @@ import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
-from cncc.frontend.linuxcnc.g7x_geom import P, Piece, corner, split_extrema, tangent
+from cncc.frontend.linuxcnc.g7x_geom import P, Piece, corner, cross, split_extrema, tangent
 from cncc.frontend.syntax import Word
 
 if TYPE_CHECKING:
@@ -178,6 +178,20 @@ def _to_frame(p: Piece, f: Frame7x, *, swap_u: bool = False) -> Piece:
     return Piece(f.to(p.a), f.to(p.b), c, p.ccw != f.flips)
 
 
+# rs274 2.9 and small fillets/chamfers (black-box, the same in G20 and G21, in program units): one whose
+# end points lie less than SMALL_CHORD apart is not put in (the corner stays); one that spans less than
+# SMALL_SPAN_OUTSIDE along the cut's axis at an outside corner (less than SMALL_SPAN_INSIDE at an inside
+# one) makes it report "Not monotonic".
+SMALL_CHORD = 0.001
+SMALL_SPAN_OUTSIDE = 0.01
+SMALL_SPAN_INSIDE = 0.001
+
+
+def _small(join: Piece, outside: bool) -> bool:
+    """True when rs274 2.9 refuses the profile for this fillet or chamfer (see SMALL_CHORD)."""
+    return abs(join.a[0] - join.b[0]) < (SMALL_SPAN_OUTSIDE if outside else SMALL_SPAN_INSIDE)
+
+
 def pieces(moves: list[tuple[Piece, float, bool]], f: Frame7x) -> list[Piece]:
     """The profile (from the end of its first move) in the cycle's frame, fillets and chamfers put in."""
     out: list[Piece] = []
@@ -188,9 +202,14 @@ def pieces(moves: list[tuple[Piece, float, bool]], f: Frame7x) -> list[Piece]:
             got = corner(out[-1], p, pending[0], pending[1])
             if got is None:
                 raise ProfileError("G7X error: Not monotonic")
-            out[-1] = got[0]
-            out.append(got[1])
-            p = got[2]
+            join = got[1]
+            if math.dist(join.a, join.b) >= SMALL_CHORD:
+                outside = cross(tangent(out[-1], True), tangent(p, False)) > 0
+                if _small(join, outside):
+                    raise ProfileError("G7X error: Not monotonic")
+                out[-1] = got[0]
+                out.append(join)
+                p = got[2]
         out.append(p)
         pending = size, chamfer
     return [p for p in out if p.a != p.b or p.c is not None]
