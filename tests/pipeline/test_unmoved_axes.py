@@ -20,9 +20,10 @@ machine starts wherever it is), and every output must keep ``U`` at its start po
 * ``-E`` (the expanded program), read back in SYNTEC;
 * the planned trajectories of ``--emit=timing`` (-O1 and the nominal column; positions and
   velocities sampled inside every phase);
-* the step pulses (``--emit=pulses``, CSV) on generic-mill at 4.17 steps/mm: no step and no
-  direction change of ``U``.  (4.17, not 5: the generated positions, such as 3.5 mm, then never
-  lie on a half-step boundary, where the pulse generator reports E0701 -- its own issue.)
+* the step pulses (``--emit=pulses``, CSV) on generic-mill at 5 steps/mm: no step and no
+  direction change of ``U``.  (5 steps/mm puts generated positions such as 3.5 mm and the
+  start 30.5 mm exactly on half-step boundaries; tests/backends/test_pulses_boundary_start.py
+  checks those steps one by one.)
 """
 
 from __future__ import annotations
@@ -58,7 +59,7 @@ def files(tmp_path_factory: pytest.TempPathFactory) -> dict[str, str]:
     tools = d / "tools.toml"
     tools.write_text('units = "mm"\n[tools.1]\nlength_mm = 40.0\nradius_mm = 0.5\n')
     text = (ROOT / "cncc" / "machines" / "generic-mill.toml").read_text()
-    text = re.sub(r"steps_per_mm = [0-9.]+", "steps_per_mm = 4.17", text)  # coarse (see the docstring)
+    text = re.sub(r"steps_per_mm = [0-9.]+", "steps_per_mm = 5.0", text)  # coarse (see the docstring)
     text = re.sub(r"(?m)^soft_(min|max)_mm = .*\n", "", text).replace('name = "generic-mill"', 'name = "coarse-mill"')
     machine = d / "coarse-mill.toml"
     machine.write_text(text)

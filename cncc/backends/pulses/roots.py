@@ -77,6 +77,7 @@ def _accel(d: F64, counts: I64, v: F64, a: F64, j: F64, length: F64, ends: tuple
     root += w
     with np.errstate(divide="ignore", invalid="ignore"):
         u = np.divide(d, root, out=root)
+    u[d <= 0.0] = 0.0  # a boundary at the piece start (from rest: 0/0): the step is at once
     return _clamp(u, np.repeat(length, counts))
 
 
