@@ -31,6 +31,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+import numpy.typing as npt
 
 from cncc.ir.trajectory import FloatArray, Trajectory
 
@@ -118,12 +119,16 @@ def smeared_jerk_bad(traj: Trajectory, b: Boundaries, jmax_mm_s3: FloatArray, pe
     return bad
 
 
-def dense_extremes(traj: Trajectory, per_phase: int = 16, chunk_phases: int = 8192
-                   ) -> tuple[FloatArray, FloatArray, FloatArray]:
+def dense_extremes(traj: Trajectory, per_phase: int = 16, chunk_phases: int = 8192,
+                   phases: npt.NDArray[np.intp] | None = None) -> tuple[FloatArray, FloatArray, FloatArray]:
     """``(n, m)`` maxima of ``|v|``, ``|a|``, ``|j|`` over ``per_phase + 1`` samples of each phase
-    (both ends by their one-sided limits), ``chunk_phases`` phases at a time (bounded memory)."""
+    (both ends by their one-sided limits), ``chunk_phases`` phases at a time (bounded memory).
+
+    With ``phases`` (indices), only those phases are sampled and the rows are theirs, in order."""
     t0 = np.asarray(traj.t0_s, float)
     dur = np.asarray(traj.duration_s, float)
+    if phases is not None:
+        t0, dur = t0[phases], dur[phases]
     n = t0.size
     frac = np.linspace(0.0, 1.0, per_phase + 1)
     outs: list[list[FloatArray]] = [[], [], []]

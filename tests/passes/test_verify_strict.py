@@ -239,3 +239,12 @@ def test_dense_extremes_are_the_same_in_chunks() -> None:
         assert w.shape == (traj.phase_count, 6)
         assert np.array_equal(w, p)
     assert whole[1][2, 0] == pytest.approx(1.2 * X_JERK * PERIOD)  # the middle phase's acceleration
+
+
+def test_dense_extremes_of_chosen_phases_are_their_rows_of_the_whole() -> None:
+    traj = _two_steps(0.0003)
+    whole = vp.dense_extremes(traj)
+    rows = np.array([2, 0], dtype=np.intp)
+    part = vp.dense_extremes(traj, phases=rows, chunk_phases=1)
+    for w, p in zip(whole, part, strict=True):
+        assert np.array_equal(w[rows], p)
