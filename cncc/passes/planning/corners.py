@@ -107,7 +107,8 @@ def candidates(run: PathRun, limits: AxisLimits, machine: MachineModel) -> np.nd
     g = _corner_geometry(run, v, limits, machine)
     len_in, v_in, len_out, v_out, half = g.len_in, g.v_in, g.len_out, g.v_out, g.half
     radius = np.nan_to_num(g.radius_mm, nan=np.inf, posinf=np.inf)
-    v_arc = np.sqrt(NORMAL_SHARE * g.a_normal * radius)
+    with np.errstate(invalid="ignore"):  # 0 * inf: no normal acceleration on a straight-through corner
+        v_arc = np.nan_to_num(np.sqrt(NORMAL_SHARE * g.a_normal * radius), nan=np.inf)
     v_arc = np.where(half > np.pi / 2 - 5e-4, 0.0, v_arc)  # a reversal is never rounded
     turning = half > 5e-4
     cand[v] = turning & (len_in > 1e-9) & (len_out > 1e-9) & (v_arc < SLOW_CORNER * np.minimum(v_in, v_out))
