@@ -23,7 +23,6 @@ from hypothesis import strategies as st
 from cncc import driver
 from cncc.backends.timing import streamed
 from cncc.backends.timing.linecols import LineStarts, SourceLines, SparseRows
-from cncc.frontend import fastbatch
 from cncc.source import SourceMap
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -58,13 +57,6 @@ def agree(path: Path, args: list[str], monkeypatch: pytest.MonkeyPatch) -> None:
     assert calls, "the streamed path was not taken"
     assert new[0] == old[0], (path, args)
     assert new[1] == old[1], (path, args)
-
-
-@pytest.fixture
-def small_chunks(monkeypatch: pytest.MonkeyPatch) -> None:
-    monkeypatch.setattr(fastbatch, "STREAK", 2)
-    monkeypatch.setattr(fastbatch, "MIN_CHUNK", 64)
-    monkeypatch.setattr(fastbatch, "MAX_CHUNK", 512)
 
 
 @pytest.mark.parametrize("kind", ["plain", "arcs", "transformed"])

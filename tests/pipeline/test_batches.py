@@ -19,7 +19,6 @@ from hypothesis import strategies as st
 
 from cncc import driver
 from cncc.dialects import load_dialect
-from cncc.frontend import fastbatch
 from cncc.frontend.fastpath import is_straight_line
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -50,13 +49,6 @@ def agree(path: Path, args: list[str], monkeypatch: pytest.MonkeyPatch, start: t
     without = run(path, args, monkeypatch, False, start)
     assert with_batches[0] == without[0], (path, args)
     assert with_batches[1] == without[1], (path, args)
-
-
-@pytest.fixture
-def small_chunks(monkeypatch: pytest.MonkeyPatch) -> None:
-    monkeypatch.setattr(fastbatch, "STREAK", 2)
-    monkeypatch.setattr(fastbatch, "MIN_CHUNK", 64)
-    monkeypatch.setattr(fastbatch, "MAX_CHUNK", 512)
 
 
 @pytest.mark.parametrize("kind", ["plain", "arcs", "transformed"])

@@ -53,17 +53,10 @@ def decimal(values: I64) -> Cells:
         raise ValueError("decimal() takes non-negative integers")
     top = int(v.max()) if n else 0
     groups = max(len(str(top)) + 3, 4) // 4  # four digits a group, most significant first
-    words = np.empty((n, groups), np.uint32)
-    rest = v
-    for gi in range(groups - 1, 0, -1):
-        high = rest // 10_000
-        words[:, gi] = np.take(_GROUPS32, rest - high * 10_000)
-        rest = high
-    words[:, 0] = np.take(_GROUPS32, rest)
     width = 4 * groups
     digits = np.searchsorted(_POW10[1:width + 1], v, side="right") + 1  # 0..9 -> 1, 10..99 -> 2, ...
     keep = np.arange(width)[None, :] >= (width - digits)[:, None]
-    return Cells(words.view(np.uint8).reshape(n, width), keep)
+    return Cells(_digits(v, groups), keep)
 
 
 def signed(values: I64) -> Cells:
