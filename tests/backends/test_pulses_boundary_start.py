@@ -58,3 +58,50 @@ def test_steps_sit_on_their_boundaries(coarse_machine: Path, level: int, start: 
         at = traj.sample(steps * 1e-9)[0][:, col]
         # ns rounding and the direction set-up delay (5 us) at most 250 mm/s: within 2 um
         assert np.max(np.abs(at - boundary)) < 2e-3
+
+
+# Found by tests/pipeline/test_unmoved_axes.py: the G01 of the subprogram ends Z on -2.5 mm
+# (a half step at 5 steps/mm); the rapid after it holds Z, but the phases join 1 ulp apart
+# there, so the still phase counted a step that no time solves (0 * inf: E0701 at 1 GHz).
+STILL_ON_BOUNDARY = """G71 G90 G94 G19 G40 G49 G80
+G00 Y0. Z0.
+M98 H100
+G00 Y0.
+G91 G03 Y4. Z-8. R4.972 F300.
+G90
+G00 Y0.
+M30
+N100
+G91 G01 Y-8. Z-2.5 F600.
+G90
+M99
+"""
+
+
+@pytest.mark.parametrize("level", [1, 2])
+@pytest.mark.parametrize("start", [None, (13.0, -7.0, 25.0), (-40.0, 30.5, 5.0)])
+def test_a_still_phase_on_a_boundary_makes_no_step(coarse_machine: Path, level: int,
+                                                   start: tuple[float, float, float] | None) -> None:
+    common = {"dialect": "syntec", "machine": str(coarse_machine), "start_machine_mm": start, "opt_level": level}
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", RuntimeWarning)
+        pulses = compile_text(STILL_ON_BOUNDARY, emit="pulses", pulse_format="csv", **common)
+    assert pulses.ok, [(d.code, d.message) for d in pulses.sink.items]
+    assert not [d.code for d in pulses.sink.items if d.code.startswith("E")]
+    rows = [line.split(",") for line in pulses.output.splitlines()[1:]]
+    steps = np.array([int(r[0]) for r in rows if r[1] == "Z" and r[2] == "step"], dtype=np.int64)
+    assert np.all(np.diff(steps) > 1000)  # Z never exceeds ~250 mm/s here: one step per 800 us at most
+    # independent count: Z's boundary crossings on the planned trajectory, sampled every 10 us
+    # (positions rounded to 1 nm first, so the 1-ulp joins themselves do not count)
+    timing = compile_text(STILL_ON_BOUNDARY, emit="timing", keep_trajectory=True, **common)
+    crossings = 0
+    for run in timing.runs:
+        if run.label.startswith("nominal"):
+            continue  # the report's -O0 column, not the plan the pulses follow
+        traj = run.trajectory
+        assert traj is not None
+        t = np.linspace(0.0, traj.duration_total_s, int(traj.duration_total_s / 1e-5) + 2)
+        z = np.round(traj.sample(t)[0][:, list(traj.axes).index("Z")], 9)
+        crossings += int(np.abs(np.diff(np.floor(z * STEPS_PER_MM + 0.5))).sum())
+    assert crossings > 50
+    assert steps.size == crossings

@@ -230,14 +230,49 @@ def _pieces(traj: Trajectory, seg: Segments, lo: int, hi: int, i: int, spec: Axi
         inner = np.flatnonzero(bent[c] & ~is_first)
         ystart[inner] = axis_positions(traj, ph[c[inner]], pstart[inner], i)
     y_all = np.append(ystart, seg.value_mm[hi, i])
+    y_all = settle_tiny(y_all)
     n_all = spec.motor_steps(y_all)
     dn = np.diff(n_all)
     mv = np.flatnonzero(dn)
     if mv.size == 0:
         return None
     c, tau_a = c[mv], pstart[mv]
-    return _Pieces(c, tau_a, pend[mv], np.abs(dn[mv]), np.sign(dn[mv]).astype(np.int8), n_all[mv], ystart[mv],
+    return _Pieces(c, tau_a, pend[mv], np.abs(dn[mv]), np.sign(dn[mv]).astype(np.int8), n_all[mv], y_all[mv],
                    y_all[mv + 1], traj.t0_s[ph[c]] + tau_a, ph[c].astype(np.int32), bent[c])
+
+
+SETTLE_MM = 1e-9  # a piece that moves less is rounding noise (phases join a few ulp apart)
+
+
+def settle_tiny(y_all: F64) -> F64:
+    """Piece boundary positions with sub-nanometre pieces folded into their neighbours.
+
+    ``y_all`` (``q + 1``) holds the start of each of ``q`` monotone pieces and the end of the
+    last.  Consecutive phases may join a few ulp apart, and a jerk phase that stops on a
+    position may pass it by 1e-13 mm, so an axis standing exactly on a step boundary (a half
+    step) could count a step it cannot make (no time solves it on a still piece: E0701 at
+    1 GHz) or step there and back within microseconds.  A piece that moves at most
+    :data:`SETTLE_MM` ends where it starts (forward), and a run of such pieces at the end of
+    the range takes the range's end value (backward), so the neighbouring piece that really
+    moves makes the step; the first and the last values, shared with the neighbouring
+    ranges, never change, so the total count is kept.
+    """
+    q = y_all.shape[0] - 1
+    tiny = np.abs(np.diff(y_all)) <= SETTLE_MM
+    if not tiny.any():
+        return y_all
+    take = np.arange(q + 1, dtype=np.int64)
+    fill = np.zeros(q + 1, dtype=bool)
+    fill[1:q] = tiny[:q - 1]  # the end of a tiny piece (never the range's last value)
+    take[fill] = 0
+    np.maximum.accumulate(take, out=take)
+    out: F64 = y_all[take]
+    if tiny[-1]:
+        moving = np.flatnonzero(~tiny)
+        r = int(moving[-1]) + 1 if moving.size else 0  # first piece of the trailing tiny run
+        if r > 0:
+            out[r:q] = y_all[q]
+    return out
 
 
 def axis_runs(traj: Trajectory, seg: Segments, lo: int, hi: int, i: int, spec: AxisPulseSpec) -> tuple[F64, I8, I32]:
