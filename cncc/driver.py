@@ -251,7 +251,9 @@ def interp_options(opts: Options, machine: MachineModel, sink: DiagnosticSink) -
     work, lengths, radii = load_tables(opts, sink)
     refs = tuple(tuple(r) + (0.0,) * (6 - len(r)) for r in machine.reference_positions_mm) or ((0.0,) * 6,)
     m_codes = {code_tenths(name[1:]): (m.meaning or "machine function") for name, m in machine.m_codes}
-    iopts = InterpOptions(work_offsets_mm=work, tool_lengths_mm=lengths, tool_radii_mm=radii,
+    table_failed = any(d.code == dg.BAD_OFFSETS_FILE for d in sink.items)
+    listed = frozenset(lengths) | frozenset(radii) if opts.tools_file and not table_failed else None
+    iopts = InterpOptions(work_offsets_mm=work, tool_lengths_mm=lengths, tool_radii_mm=radii, tool_numbers=listed,
                           reference_mm=refs, block_delete=opts.block_delete, strict=opts.strict,  # type: ignore[arg-type]
                           machine_m_codes=m_codes)
     if opts.start_machine_mm is not None:  # the program position of that point in G54

@@ -149,9 +149,24 @@ def _feed_speed_tool(it: Interpreter, ctx: BlockContext) -> None:
     if w is not None:
         if w.value < 0 or w.value != int(w.value):
             it.emit_error(dg.NUMBER_RANGE, it.word_span(w), "T must be a non-negative integer")
+        elif not_in_tool_table(it, int(w.value)):
+            it.emit_error(dg.CONTROLLER_REJECTS, it.word_span(w), tool_not_found(it, int(w.value)))
         else:
             it.modal = it.modal.with_(tool_selected=int(w.value))
             ctx.out.append(SelectTool(it.word_span(w), it.frame, int(w.value)))
+
+
+def not_in_tool_table(it: Interpreter, tool: int) -> bool:
+    """Whether the dialect checks tools against the given table (``tool_table_check``) and it
+    does not list ``tool`` (T0, no tool, is always allowed; without a table nothing is checked)."""
+    listed = it.options.tool_numbers
+    checked = bool(it.dialect.option("tool_table_check", False))
+    return checked and bool(tool) and listed is not None and tool not in listed
+
+
+def tool_not_found(it: Interpreter, tool: int) -> str:
+    text = it.dialect.raw.get("errors", {}).get("tool_not_found", "Requested tool {0} not found in the tool table")
+    return str(text).replace("{0}", str(tool))
 
 
 # ---- positions ------------------------------------------------------------------------

@@ -20,6 +20,7 @@ from typing import TYPE_CHECKING
 from cncc import diagnostics as dg
 from cncc.dialects import CodeDef
 from cncc.frontend import registry
+from cncc.frontend.ops import not_in_tool_table, tool_not_found
 from cncc.ir import SetToolNumber
 
 if TYPE_CHECKING:
@@ -38,10 +39,8 @@ def m61(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
         it.emit_error(dg.CONTROLLER_REJECTS, ctx.span, controller_error(
             it, "m61_q", "Need non-negative Q-word to specify tool number with M61"))
         return
-    table = it.options.tool_lengths_mm
-    if tool and table and tool not in table:
-        it.emit_error(dg.CONTROLLER_REJECTS, ctx.span, controller_error(
-            it, "tool_not_found", "Requested tool {0} not found in the tool table").replace("{0}", str(tool)))
+    if not_in_tool_table(it, tool):
+        it.emit_error(dg.CONTROLLER_REJECTS, ctx.span, tool_not_found(it, tool))
         return
     it.modal = it.modal.with_(tool_loaded=tool)
     ctx.out.append(SetToolNumber(ctx.span, it.frame, tool))

@@ -77,6 +77,11 @@ CASES: dict[str, str | tuple[str, str] | tuple[str, str, dict[str, str]]] = {
     "g74_with_p": "G21 S500 M4\nF100\nG0 X0 Y0 Z10\nG98 G74 G90 X5 Y0 Z-10 R2 P1\nG80\nM2\n",
     "g87_with_p": "G21 S500 M3\nF100\nG0 X0 Y0 Z10\nG98 G87 G90 X5 Y0 Z2 R-10 Q2 P1 I1 J0 K-5\nG80\nM2\n",
     "tool_not_in_table": "G21\nT1 M6\nM2\n",
+    "tool_not_in_given_table": ("G21\nG0 X1\nT1\nG0 X2\nM2\n", "T2 P2 Z1\n"),
+    "tool_in_given_table": ("G21\nG0 X1\nT1 M6\nG43\nG0 X2\nM2\n", "T1 P1 Z1 D0.1\n"),
+    "m61_not_in_given_table": ("G21\nM61 Q1\nM2\n", "T2 P2 Z1\n"),
+    "g10_l1_does_not_list_a_tool": "G21\nG10 L1 P5 Z1\nT5\nM2\n",
+    "t0_needs_no_table_entry": ("G21\nT0 M6\nM2\n", "T2 P2 Z1\n"),
     # issue 24's missing codes (tests/oracle/programs_codes.py generates more)
     "probe_g38_3_incremental": "G21 F100\nG91 G38.3 Z-2\nG38.3 Z-1\nG90 G1 X#5063 Y#5070\nM2\n",
     "probe_after_offsets_inch": "G20 F10\nG10 L2 P1 X1 Y2 Z3\nG92 X1\nG38.2 X2 Y1 Z-5\nG1 X#5061 Y#5062 Z#5063\nM2\n",

@@ -187,10 +187,9 @@ def run_cncc(text: str, tool_table: str = "", *, ini: str = "", files: Files = (
         if local_files:
             _write_files(tmp, local_files)
             opts["include_dirs"] = [tmp]
-        if tool_table:
-            tbl = Path(tmp) / "tool.tbl"
-            tbl.write_text(tool_table_mm(tool_table))
-            opts["tools_file"] = str(tbl)
+        tbl = Path(tmp) / "tool.tbl"  # rs274 always runs with a table (empty when none is given): so does cncc
+        tbl.write_text(tool_table_mm(tool_table))
+        opts["tools_file"] = str(tbl)
         if _write_ini(tmp, ini, files):  # SUBROUTINE_PATH is relative to the INI's folder for cncc, cwd for rs274
             opts["ini_file"] = str(Path(tmp) / "prog.ini")
         r = compile_text(text, dialect="linuxcnc", emit="canon", **opts)

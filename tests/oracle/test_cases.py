@@ -12,7 +12,7 @@ pytestmark = pytest.mark.skipif(rs274_path() is None, reason="LinuxCNC's rs274 i
                                 "(run scripts/ensure-rs274.sh; it needs apt-get and dpkg)")
 
 # Classes of issue 24 not fixed yet: cncc disagrees with rs274 on these (docs/dialects-notes.md).
-OPEN_CASES = frozenset({"tool_not_in_table"})
+OPEN_CASES: frozenset[str] = frozenset()
 
 
 @pytest.mark.parametrize("name", sorted(CASES))
