@@ -4,7 +4,8 @@ A row is a sequence of :class:`Cells` — decimal integers (:func:`decimal`), on
 fixed byte strings (:func:`choice`) or a constant (:func:`literal`) — each a byte matrix
 ``(n, width)`` with a mask of the bytes that are kept; :func:`render` lays the cells side
 by side and keeps the masked bytes, row by row, as one ``bytes``.  No Python loop runs
-per row: a chunk of a million events is a handful of array operations.
+per row: a chunk of a million events is a handful of array operations.  The digits come
+from :func:`cncc.backends.numtext.zero_padded`, the backends' one number formatter.
 """
 
 from __future__ import annotations
@@ -15,12 +16,11 @@ from dataclasses import dataclass
 import numpy as np
 import numpy.typing as npt
 
+from cncc.backends.numtext import digit_count, zero_padded
+
 I64 = npt.NDArray[np.int64]
 U8 = npt.NDArray[np.uint8]
 Mask = npt.NDArray[np.bool_]
-
-_ZERO = ord("0")
-_POW10 = np.array([10**k for k in range(19)], dtype=np.int64)
 
 
 @dataclass(frozen=True, slots=True)
@@ -35,16 +35,6 @@ class Cells:
         return Cells(self.data, self.keep & rows[:, None])
 
 
-def _groups_table() -> U8:
-    """``(10000, 4)``: the four decimal digits of 0..9999, as ASCII."""
-    k = np.arange(10_000)
-    return (np.stack([k // 1000, k // 100 % 10, k // 10 % 10, k % 10], axis=1) + _ZERO).astype(np.uint8)
-
-
-_GROUPS = _groups_table()
-_GROUPS32 = np.ascontiguousarray(_GROUPS).view(np.uint32).ravel()  # the same four bytes as one word
-
-
 def decimal(values: I64) -> Cells:
     """Non-negative integers in decimal, without leading zeros (``0`` is ``"0"``)."""
     v = np.asarray(values, dtype=np.int64)
@@ -54,9 +44,8 @@ def decimal(values: I64) -> Cells:
     top = int(v.max()) if n else 0
     groups = max(len(str(top)) + 3, 4) // 4  # four digits a group, most significant first
     width = 4 * groups
-    digits = np.searchsorted(_POW10[1:width + 1], v, side="right") + 1  # 0..9 -> 1, 10..99 -> 2, ...
-    keep = np.arange(width)[None, :] >= (width - digits)[:, None]
-    return Cells(_digits(v, groups), keep)
+    keep = np.arange(width)[None, :] >= (width - digit_count(v))[:, None]
+    return Cells(zero_padded(v, width), keep)
 
 
 def signed(values: I64) -> Cells:
@@ -99,20 +88,6 @@ def render(cells: Sequence[Cells]) -> bytes:
     return out
 
 
-def _digits(v: I64, groups: int) -> U8:
-    """``(n, 4 groups)`` ASCII digits of ``v`` with leading zeros."""
-    n = v.shape[0]
-    words = np.empty((n, groups), np.uint32)
-    rest = v
-    for gi in range(groups - 1, 0, -1):
-        high = rest // 10_000
-        words[:, gi] = np.take(_GROUPS32, rest - high * 10_000)
-        rest = high
-    words[:, 0] = np.take(_GROUPS32, rest)
-    out: U8 = words.view(np.uint8).reshape(n, 4 * groups)
-    return out
-
-
 def stamped(t: I64, new_time: Mask, tokens: Sequence[bytes], code: npt.NDArray[np.integer]) -> bytes:
     """Rows ``#<t>\\n<token>`` where ``new_time``, ``<token>`` elsewhere (VCD value changes);
     ``tokens`` all of one length; ``t`` non-negative."""
@@ -129,13 +104,13 @@ def stamped(t: I64, new_time: Mask, tokens: Sequence[bytes], code: npt.NDArray[n
     dw = 4 * groups
     width = 1 + dw + 1 + tw  # a spare column for '#', the digits, '\n', the token
     data = np.empty((n, width), np.uint8)
-    data[:, 1:1 + dw] = _digits(t, groups)
+    data[:, 1:1 + dw] = zero_padded(t, dw)
     data[:, 1 + dw] = ord("\n")
     table = np.frombuffer(b"".join(tokens), np.uint8).reshape(len(tokens), tw)
     idx = np.asarray(code, np.int64)
     for col in range(tw):
         data[:, 2 + dw + col] = np.take(table[:, col], idx)
-    digits = np.searchsorted(_POW10[1:dw + 1], t, side="right") + 1
+    digits = digit_count(t)
     start = np.where(new_time, dw - digits, dw + 2)  # the '#' column, or the token's first
     rows = np.flatnonzero(new_time)
     data[rows, start[rows]] = ord("#")
