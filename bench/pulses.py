@@ -12,9 +12,9 @@ CPU time of that run and the load average, because the machine may be shared.
     python bench/pulses.py --whole 100000     # whole process on the raster kind of bench/pathgen.py
 
 ``--whole N`` instead runs ``cncc raster.nc --emit=pulses --pulse-format=queue`` as a child
-on the N-segment raster of ``bench/pathgen.py`` (generic-mill with Z soft max 10 mm, since
-the program's clearance moves go to Z5): steps per CPU second of the child (user + system,
-``os.wait4``), its peak RSS, and the steps counted in the written queue (goal >= 1 M
+on the N-segment raster of ``bench/pathgen.py`` (``BENCH_MILL``: generic-mill with Z soft max
+10 mm, since the program's clearance moves go to Z5, and X, Y within +-1 m): steps per CPU
+second of the child (user + system, ``os.wait4``), its peak RSS, and the steps counted in the written queue (goal >= 1 M
 steps/s whole process, streamed).
 
 ``--before TREE`` (e.g. ``/work/before3``) runs the same whole-process commands from that
@@ -24,7 +24,7 @@ tree too, in the same run, on three programs: the raster (``--whole`` segments, 
 ``--emit=pulses`` (queue and VCD), and the pulse stage alone: that CPU minus the CPU of
 ``--emit=timing`` on the same file (planning, verify and the report), as steps per second.
 
-    python bench/pulses.py --before /work/before3 [--whole 100000 --arcs 1000 --walk 2000]
+    python bench/pulses.py --before /work/before3 [--whole 100000 --arcs 1000 --walk 2000] [--only arcs,walk]
 """
 
 from __future__ import annotations
@@ -111,9 +111,19 @@ def numpy_pass(samples: int, chunk: int) -> float:
 BENCH_MILL = """base = "generic-mill"
 name = "bench-mill"
 [[axes]]
+name = "X"
+soft_min_mm = -1000.0
+soft_max_mm = 1000.0
+[[axes]]
+name = "Y"
+soft_min_mm = -1000.0
+soft_max_mm = 1000.0
+[[axes]]
 name = "Z"
 soft_max_mm = 10.0
 """
+"""generic-mill with room for the benchmark programs: Z up to the clearance moves' Z5, X and Y
+to +-1 m (the 1k-arc contour and the random walk leave generic-mill's X, Y >= -1 mm)."""
 
 
 def whole_process(n: int, mode: str, limit_s: float = 1800.0) -> None:
@@ -196,8 +206,9 @@ def before_after(before: str, sizes: dict[str, int], limit_s: float) -> None:
 
     trees = (("before", Path(before).resolve()), ("after", here.parent))
     load = os.getloadavg()
-    print(f"--emit=pulses whole process, before = {before}, after = {here.parent}; -O2, generic-mill "
-          f"(Z soft max 10 mm); load {load[0]:.1f}/{load[1]:.1f} on {os.cpu_count()} cores")
+    print(f"--emit=pulses whole process, before = {before}, after = {here.parent}; -O2, bench-mill "
+          f"(generic-mill, soft limits Z <= 10, X, Y +-1000 mm); load {load[0]:.1f}/{load[1]:.1f} "
+          f"on {os.cpu_count()} cores")
     print(f"{'program':<22} {'tree':<7} {'steps':>12} {'fmt':>6} {'CPU s':>8} {'RSS MB':>7} {'M steps/s':>10} "
           f"{'timing CPU s':>13} {'pulse stage M steps/s':>22}")
     with tempfile.TemporaryDirectory() as tmp:
@@ -236,10 +247,12 @@ def main() -> None:
     ap.add_argument("--arcs", type=int, default=1000, help="--before: arcs of the arc contour")
     ap.add_argument("--walk", type=int, default=2000, help="--before: segments of the random walk")
     ap.add_argument("--limit", type=float, default=900.0, help="--before: seconds before a child is killed")
+    ap.add_argument("--only", default="raster,arcs,walk", help="--before: programs to run (comma list)")
     args = ap.parse_args()
     if args.before:
-        before_after(args.before, {"raster": args.whole or 100_000, "arcs": args.arcs, "random walk": args.walk},
-                     args.limit)
+        sizes = {"raster": args.whole or 100_000, "arcs": args.arcs, "random walk": args.walk}
+        chosen = {k.strip() for k in args.only.split(",")}
+        before_after(args.before, {k: n for k, n in sizes.items() if k.split()[-1] in chosen}, args.limit)
         return
     if args.whole:
         whole_process(args.whole, args.mode)
