@@ -18,6 +18,10 @@ from cncc.backends.pulses.chunk import PulseLayout, StepChunk
 from cncc.backends.pulses.events import KIND_DIR, KIND_FALL, ordered_events
 from cncc.backends.pulses.text import stamped
 
+RENDER_ROWS = 1 << 16
+"""Events rendered to text at a time: the byte matrix, its mask and the text of a slice, not of a
+whole chunk (a chunk of 2^18 steps has about 5 x 10^5 events; their text and temporaries took ~80 MB)."""
+
 
 def _ident(k: int) -> str:
     """VCD identifier number ``k``: printable ASCII 33..126, base 94."""
@@ -67,5 +71,8 @@ def write_vcd(chunks: Iterable[StepChunk], out: TextIO) -> None:
         new_t = np.empty(t.shape, dtype=bool)
         new_t[0] = int(t[0]) != last_t
         new_t[1:] = t[1:] != t[:-1]
-        out.write(stamped(t, new_t, tokens, 2 * sig + value).decode("ascii"))
+        code = 2 * sig + value
+        for lo in range(0, t.shape[0], RENDER_ROWS):  # the text of a slice at a time: bounded memory
+            hi = lo + RENDER_ROWS
+            out.write(stamped(t[lo:hi], new_t[lo:hi], tokens, code[lo:hi]).decode("ascii"))
         last_t = int(t[-1])

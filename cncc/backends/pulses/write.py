@@ -23,13 +23,13 @@ from typing import IO, TextIO
 
 import numpy as np
 
+from cncc.backends.pulses import text
 from cncc.backends.pulses.chunk import StepChunk
 from cncc.backends.pulses.events import KIND_BACKLASH, KIND_DIR, ordered_events
 from cncc.backends.pulses.queue import DEFAULT_MAX_ERROR_NS, write_queue
-from cncc.backends.pulses.vcd import write_vcd
+from cncc.backends.pulses.vcd import RENDER_ROWS, write_vcd
 
 FORMATS = ("vcd", "csv", "npz", "queue")
-_EVENT_NAMES = {KIND_DIR: "dir", KIND_BACKLASH: "backlash"}
 _NPZ_FIELDS = (("t_ns", np.int64), ("dir", np.int8), ("backlash", np.bool_), ("phase", np.int32),
                ("dir_t_ns", np.int64), ("dir_level", np.uint8))
 
@@ -59,10 +59,16 @@ def _counting(chunks: Iterable[StepChunk], stats: WriteStats) -> Iterable[StepCh
 def write_csv(chunks: Iterable[StepChunk], out: TextIO) -> None:
     out.write("t_ns,axis,event,dir_level\n")
     for layout, ev in ordered_events(chunks, with_falls=False):
-        names = layout.axes
-        rows = [f"{t},{names[a]},{_EVENT_NAMES.get(k, 'step')},{lv}\n" for t, a, k, lv in
-                zip(ev["t_ns"].tolist(), ev["axis"].tolist(), ev["kind"].tolist(), ev["level"].tolist(), strict=True)]
-        out.write("".join(rows))
+        axes = [f",{n},".encode("ascii") for n in layout.axes]
+        kinds = [b"step,", b"dir,", b"backlash,"]  # KIND_FALL is not in a CSV (with_falls=False)
+        kind = np.where(ev["kind"] == KIND_DIR, 1, np.where(ev["kind"] == KIND_BACKLASH, 2, 0))
+        t_ns, axis = ev["t_ns"].astype(np.int64), ev["axis"].astype(np.int64)
+        for lo in range(0, t_ns.shape[0], RENDER_ROWS):  # rendered by numpy, a slice at a time
+            sl = slice(lo, lo + RENDER_ROWS)
+            n = t_ns[sl].shape[0]
+            out.write(text.render([text.signed(t_ns[sl]), text.choice(axes, axis[sl]),
+                                   text.choice(kinds, kind[sl]), text.decimal(ev["level"][sl].astype(np.int64)),
+                                   text.literal(b"\n", n)]).decode("ascii"))
 
 
 def write_npz(chunks: Iterable[StepChunk], out: IO[bytes]) -> None:
