@@ -214,12 +214,17 @@ def test_tangent_joint_speed_is_the_closed_form_curvature_step_cap() -> None:
     law = traj.path
     assert law is not None
     k = int(np.flatnonzero(law.seg == law.seg.max())[0])  # the first phase on the arc
-    expected = math.sqrt(0.5 * j_y * period * r)  # blending.TANGENT_STEP_SHARE = 1/2
+    from cncc.passes.planning.blending import TANGENT_STEP_SHARE as share
+    from cncc.passes.planning.segments import JERK_SHARES
+
+    # the coast of T share / (1 - turn) fits within one period: share + the turning share <= 1
+    assert share + JERK_SHARES[0] <= 1.0
+    expected = math.sqrt(share * j_y * period * r)
     assert expected < min(math.sqrt(0.5 * 1500.0 * r), (0.25 * j_y * r * r) ** (1 / 3))
     assert law.v_mm_s[k] == pytest.approx(expected, rel=1e-6)
-    # the coasts: zero path jerk for c = T b / (1 - rho) on both sides, b = 1/2
+    # the coasts: zero path jerk for c = T b / (1 - rho) on both sides, b = share
     turn = expected**3 / (r * r) / j_y
-    coast = period * 0.5 / (1 - turn)
+    coast = period * share / (1 - turn)
     assert law.j_mm_s3[k] == 0.0 and law.j_mm_s3[k - 1] == 0.0
     assert traj.duration_s[k] == pytest.approx(coast, rel=1e-6)
     assert traj.duration_s[k - 1] == pytest.approx(coast, rel=1e-6)

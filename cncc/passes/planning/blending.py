@@ -152,9 +152,13 @@ def velocity_step_caps(seg: Segments, limits: AxisLimits, period_s: float) -> Fl
     return caps
 
 
-TANGENT_STEP_SHARE = 0.5
+TANGENT_STEP_SHARE = 0.7
 """Share of ``j_i T`` a curvature step at a tangent joint may take (the rest: the path's own
-jerk within the same period, which the controller's averaging adds to it)."""
+jerk within the same period, which the controller's averaging adds to it).  At a block
+boundary the coasts (``scurve.coast_times``, ``c = T b / (1 - r)``) leave only the circle's
+turning jerk ``r <= JERK_SHARES[0] = 1/4`` within the period, so ``b + r <= 1`` holds up to
+3/4; inside a block ``scurve.unsafe_steps`` ends the block where the ramp's jerk would add
+too much.  (Was 1/2 while vertices inside blocks had no such check.)"""
 
 CURVATURE_STEP_SHARE = 0.5
 """Share of ``j_i T`` the centripetal acceleration step at a curvature jump may take where
