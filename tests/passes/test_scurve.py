@@ -201,7 +201,7 @@ def test_contour_example_keeps_the_averaged_jerk() -> None:
 
 def test_tangent_joint_speed_is_the_closed_form_curvature_step_cap() -> None:
     # a line into a tangent arc of radius r: the centripetal acceleration steps by v^2 / r on
-    # the axis of the normal (Y); the joint is crossed at sqrt(1/2 j_Y T r) (below the arc's
+    # the axis of the normal (Y); the joint is crossed at sqrt(b j_Y T r) (below the arc's
     # own caps sqrt(A r / 2) and (j r^2 / 4)^(1/3)), and both sides coast around it
     from cncc.machines import load_machine
     from cncc.passes.plan import plan_commands
@@ -215,16 +215,18 @@ def test_tangent_joint_speed_is_the_closed_form_curvature_step_cap() -> None:
     assert law is not None
     k = int(np.flatnonzero(law.seg == law.seg.max())[0])  # the first phase on the arc
     from cncc.passes.planning.blending import TANGENT_STEP_SHARE as share
-    from cncc.passes.planning.segments import JERK_SHARES
 
-    # the coast of T share / (1 - turn) fits within one period: share + the turning share <= 1
-    assert share + JERK_SHARES[0] <= 1.0
-    expected = math.sqrt(share * j_y * period * r)
+    # the joint speed: the step b = v^2 / (r j_Y T) within share * (1 - rho) with rho = v^3 / (r^2 j_Y)
+    # the turning share, taken at the first estimate sqrt(share j_Y T r) (above the final speed)
+    first = math.sqrt(share * j_y * period * r)
+    expected = math.sqrt(share * (1 - first**3 / (r * r * j_y)) * j_y * period * r)
     assert expected < min(math.sqrt(0.5 * 1500.0 * r), (0.25 * j_y * r * r) ** (1 / 3))
     assert law.v_mm_s[k] == pytest.approx(expected, rel=1e-6)
-    # the coasts: zero path jerk for c = T b / (1 - rho) on both sides, b = share
+    # the coasts: zero path jerk for c = T b / (1 - rho) on both sides, at most T
+    b = expected**2 / r / (j_y * period)
     turn = expected**3 / (r * r) / j_y
-    coast = period * share / (1 - turn)
+    coast = period * b / (1 - turn)
+    assert coast < period
     assert law.j_mm_s3[k] == 0.0 and law.j_mm_s3[k - 1] == 0.0
     assert traj.duration_s[k] == pytest.approx(coast, rel=1e-6)
     assert traj.duration_s[k - 1] == pytest.approx(coast, rel=1e-6)
