@@ -195,10 +195,12 @@ def _bound(path: Path, machine: str = "generic-mill") -> tuple[float, float, flo
 
 def _reason(c1: float, c2: float, jb: float) -> str:
     """Why -O2's cycle is above -O1's (issue 26): the jerk-aware bound above -O1 means no
-    jerk-limited plan can match -O1 (trapezoids, no jerk limit)."""
+    jerk-limited plan can match -O1 (trapezoids, no jerk limit); below it, nothing is proven
+    either way (the planner may be slow, or the bound loose: it leaves out the centripetal
+    jerk of a turn and couples the axes only through the middles' accelerations)."""
     if not c2 > c1 * 1.0005:
         return ""
-    return "jerk forces it" if jb > c1 else "planner (bound < -O1)"
+    return "jerk forces it" if jb > c1 else "not proven (bound < -O1)"
 
 
 def scale_runs(sizes: list[int], kinds: str, limit_s: float, o3: bool = False) -> None:
