@@ -383,10 +383,10 @@ def _sampled_ok(seg: Segments, ph: Phases, cand: np.ndarray, jmax_mm_s3: FloatAr
     sv = seg.s0[cand]
     p = np.clip(np.searchsorted(ph.s0, sv, side="right") - 1, 0, ph.t0.size - 1)
     lo, hi = np.zeros(cand.size), ph.dur[p].copy()
-    for _ in range(50):  # s is nondecreasing in the phase: bisect s(t0 + tau) = s_v
+    s0, v0, a0, j0 = ph.s0[p], ph.v0[p], ph.a0[p], ph.j[p]
+    for _ in range(BISECT_STEPS // 2):  # s is nondecreasing in the phase: bisect s(t0 + tau) = s_v
         mid = (lo + hi) / 2
-        s_mid, _, _ = _path_state(ph, ph.t0[p] + mid)
-        below = s_mid < sv
+        below = s0 + mid * (v0 + mid * (a0 / 2 + mid * j0 / 6)) < sv
         lo, hi = np.where(below, mid, lo), np.where(below, hi, mid)
     tv = ph.t0[p] + (lo + hi) / 2
     _, v, a = _path_state(ph, tv)
