@@ -144,7 +144,9 @@ def interp_options(opts: Options, machine: MachineModel, sink: DiagnosticSink) -
     refs = tuple(tuple(r) + (0.0,) * (6 - len(r)) for r in machine.reference_positions_mm) or ((0.0,) * 6,)
     m_codes = {code_tenths(name[1:]): (m.meaning or "machine function") for name, m in machine.m_codes}
     table_failed = any(d.code == dg.BAD_OFFSETS_FILE for d in sink.items)
-    listed = frozenset(lengths) | frozenset(radii) if opts.tools_file and not table_failed else None
+    # only a LinuxCNC tool table (.tbl) lists tools by T number; cncc's TOML tables list offset numbers
+    tool_table = bool(opts.tools_file) and str(opts.tools_file).endswith(".tbl") and not table_failed
+    listed = frozenset(lengths) | frozenset(radii) if tool_table else None
     iopts = InterpOptions(work_offsets_mm=work, tool_lengths_mm=lengths, tool_radii_mm=radii, tool_numbers=listed,
                           reference_mm=refs, block_delete=opts.block_delete, strict=opts.strict,  # type: ignore[arg-type]
                           machine_m_codes=m_codes)
