@@ -195,10 +195,12 @@ def _bound(path: Path, machine: str = "generic-mill") -> tuple[float, float, flo
 
 def _reason(c1: float, c2: float, jb: float) -> str:
     """Why -O2's cycle is above -O1's (issue 26): the jerk-aware bound above -O1 means no
-    jerk-limited plan can match -O1 (trapezoids, no jerk limit)."""
+    jerk-limited plan can match -O1 (trapezoids, no jerk limit); below it, nothing is proven
+    either way (the planner may be slow, or the bound loose: it leaves out the centripetal
+    jerk of a turn and couples the axes only through the middles' accelerations)."""
     if not c2 > c1 * 1.0005:
         return ""
-    return "jerk forces it" if jb > c1 else "planner (bound < -O1)"
+    return "jerk forces it" if jb > c1 else "not proven (bound < -O1)"
 
 
 def scale_runs(sizes: list[int], kinds: str, limit_s: float, o3: bool = False) -> None:
@@ -254,22 +256,28 @@ def compare_runs(sizes: list[int], kinds: str, limit_s: float, before: Path) -> 
     print(f"(g) whole process, cncc FILE --emit=timing --report-format=json, generic-mill, CPU s / peak MB; "
           f"before = {before}, {_load()}")
     print(f"    {'kind':12s} {'segments':>9s} | {'before -O1':>13s} {'before -O2':>13s} | {'after -O1':>13s} "
-          f"{'after -O2':>13s} | {'O2/O1':>5s} {'O2 seg/s':>8s} {'us/seg':>6s} {'cycle a/b':>9s}")
+          f"{'after -O2':>13s} | {'O2/O1':>5s} {'O2 seg/s':>8s} {'us/seg':>6s} {'cycle a/b':>9s} | "
+          f"{'cyc O2/O1 b':>11s} {'a':>6s} {'O2/bound b':>10s} {'a':>6s} | why -O2 > -O1 (after)")
+    print("    cycle: -O2 motion time / -O1's of the same tree; bound: bench/bound.py of this tree (jerk-aware,")
+    print("    no planner code) for both trees; goals cyc O2/O1 <= 1 except where jerk forces more, O2/bound <= 1.15")
     with tempfile.TemporaryDirectory() as tmp:
         for kind in wanted:
             for n in sizes:
                 path = Path(tmp) / f"{kind.replace(' ', '_').replace('.', '')}_{n}.nc"
                 path.write_text(KINDS[kind](n))
-                b1, _ = timing_run(path, 1, limit_s, root=before)
+                b1, cb1 = timing_run(path, 1, limit_s, root=before)
                 b2, cb = timing_run(path, 2, limit_s, root=before)
-                a1, _ = timing_run(path, 1, limit_s)
+                a1, ca1 = timing_run(path, 1, limit_s)
                 a2, ca = timing_run(path, 2, limit_s)
+                jb, _, _ = _bound(path)
+                codes = sorted(set(re.findall(r"[EW]0\d{3}", a2.stderr)))
                 ratio = "" if a1.rc == -1 or a2.rc == -1 else f"{a2.cpu_s / a1.cpu_s:5.2f}"
                 rate = "" if a2.rc == -1 else f"{n / a2.cpu_s:8,.0f}"
                 per = "" if a2.rc == -1 else f"{1e6 * a2.cpu_s / n:6.0f}"
                 print(f"    {kind:12s} {n:9,d} | {cpu(b1):>7s} {b1.rss_mb:5.0f} {cpu(b2):>7s} {b2.rss_mb:5.0f} | "
                       f"{cpu(a1):>7s} {a1.rss_mb:5.0f} {cpu(a2):>7s} {a2.rss_mb:5.0f} | {ratio:>5s} {rate:>8s} "
-                      f"{per:>6s} {ca / cb:9.4f}", flush=True)
+                      f"{per:>6s} {ca / cb:9.4f} | {cb / cb1:11.3f} {ca / ca1:6.3f} {cb / jb:10.3f} {ca / jb:6.3f} | "
+                      f"{_reason(ca1, ca, jb)} {' '.join(codes)}", flush=True)
 
 
 def o3_runs(tmp: Path, limit_s: float) -> None:

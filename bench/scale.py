@@ -41,7 +41,10 @@ def run_cncc(path: Path, args: list[str], limit_s: float, root: Path = ROOT) -> 
     with tempfile.TemporaryFile() as err:
         # a session of its own: at the time limit the whole group goes (killing /usr/bin/time
         # alone left cncc running as an orphan)
-        proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=err, env=env, start_new_session=True)
+        # cwd = root: ``python -m`` puts the working directory first on sys.path, so run from
+        # another checkout it would import that checkout's cncc, not ``root``'s (before/after tables)
+        proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=err, env=env, start_new_session=True,
+                                cwd=str(root))
         start = time.monotonic()
         killed = False
         while True:

@@ -1,14 +1,20 @@
 """The driver: builds the pipeline from options — the one place that knows every stage.
 
-``compile_files(options)`` reads the inputs, lowers them with the front end, runs
-the passes, and hands the result to the backend named by ``options.emit``.  It
-never raises on bad input: everything goes into the :class:`DiagnosticSink`.
+``compile_files(options)`` reads the inputs, resolves each file's options (``cncc.toml``, the
+modeline, a guessed dialect, the ``--ini`` file), lowers them with the front end, runs the path
+passes (:mod:`cncc.pipeline.builder`), and hands the result to the backend stage
+(:func:`cncc.emit.dispatch.run_backend`) named by ``options.emit``.  It never raises on bad
+input: everything goes into the :class:`DiagnosticSink`.
+
+The options record is :class:`cncc.options.Options`, the name-to-model lookups are in
+:mod:`cncc.resolve`, and the backends' glue (translation, timing columns, planning, pulses) in
+:mod:`cncc.emit`; their public names are re-exported here for the callers that import them
+from the driver.
 """
 
 from __future__ import annotations
 
 import os
-import shutil
 import sys
 from collections.abc import Callable, Iterable, Iterator
 from dataclasses import dataclass, field
@@ -16,74 +22,31 @@ from functools import partial
 from typing import Any, TextIO, TypeVar
 
 from cncc import diagnostics as dg
-from cncc.diagnostics import DiagnosticSink, WarningPolicy
+from cncc.diagnostics import DiagnosticSink
 from cncc.dialects import Dialect, DialectError, load_dialect
-from cncc.ir import Command, Frame, Units, Vec6
+from cncc.emit.dispatch import EMIT_KINDS, MACHINE_EMITS, run_backend
+from cncc.emit.gcode import output_dialect, translation_prepare
+from cncc.emit.plan import plan_trajectory
+from cncc.emit.pulses import PULSE_BINARY_FORMATS, pulse_backend, pulse_option_problem, writes_own_output
+from cncc.emit.timing import reversal_events, timing_runs
+from cncc.ir import Command, Vec6
 from cncc.ir.batch import Item
-from cncc.ir.machine import Axis, MachineModel
+from cncc.ir.machine import MachineModel
+from cncc.options import DEFAULT_DIALECT, DEFAULT_MACHINE, Options
 from cncc.outfile import write_stream
+from cncc.resolve import apply_dialect_to_machine, default_machine, dialect_file, resolve_dialect, resolve_machine
 from cncc.source import NO_SPAN, SourceFile, SourceMap, Span
 
+__all__ = [  # the driver's own, and the re-exported names its callers import from here
+    "DEFAULT_DIALECT", "DEFAULT_MACHINE", "EMIT_KINDS", "MACHINE_EMITS", "PULSE_BINARY_FORMATS", "Options", "Result",
+    "apply_dialect_to_machine", "check_pipeline", "compile_files", "decode", "default_machine", "dialect_file",
+    "fast_syntax_only", "file_options", "front_end", "front_end_items", "interp_options", "macro_options",
+    "new_sink", "output_dialect", "path_items", "path_passes", "pipeline_config", "plan_trajectory",
+    "pulse_backend", "pulse_option_problem", "read_input", "resolve_dialect", "resolve_machine",
+    "reversal_events", "run_backend", "timing_runs", "translation_prepare", "until_limit", "writes_own_output",
+]
+
 T = TypeVar("T")
-MACHINE_EMITS = ("timing", "pulses")  # backends that read machine coordinates
-EMIT_KINDS = ("canon", "ir", "gcode", "timing", "pulses", "none")
-DEFAULT_DIALECT = "syntec"
-DEFAULT_MACHINE = "generic-mill"
-
-
-@dataclass(slots=True)
-class Options:
-    inputs: list[str] = field(default_factory=list)
-    dialect: str | None = None
-    target: str | None = None
-    machine: str = DEFAULT_MACHINE
-    emit: str = "canon"
-    output: str | None = None
-    syntax_only: bool = False
-    werror: bool = False
-    strict: bool = False
-    opt_level: int = 2
-    offsets_file: str | None = None
-    tools_file: str | None = None
-    ini_file: str | None = None  # --ini: a LinuxCNC INI file (cncc/inifile.py)
-    dialect_options: dict[str, Any] = field(default_factory=dict)
-    block_delete: bool = True
-    repair_arcs: bool = False
-    report_format: str = "text"
-    # macros and subprograms (cncc/frontend/macro): -D, -I, -M, -E, --max-steps, --io, --write-dir
-    defines: dict[int, float] = field(default_factory=dict)
-    include_dirs: list[str] = field(default_factory=list)
-    list_deps: bool = False
-    expand: bool = False
-    max_steps: int = 5_000_000
-    io_file: str | None = None
-    write_dir: str | None = None
-    compare: str = ""  # timing report columns: "O0,O1,O2" or machine names (NAME@O1)
-    annotate_time: bool = False  # timing: the program with elapsed times as comments
-    verbose: bool = False  # -v: notes on what the driver chose (the guessed dialect)
-    start_machine_mm: tuple[float, ...] | None = None  # machine position at the start (default: the G54 zero)
-    quiet: bool = False  # -q: no progress bars
-    # translation (--emit=gcode -t, cncc/backends/gcode, docs/translation.md)
-    units: str = ""  # --units: "" as programmed, "mm" or "inch"
-    line_numbers: bool = False  # -fline-numbers
-    keep_subprograms: bool = False  # --keep-subprograms: called programs kept where the target calls them
-    target_options: dict[str, Any] = field(default_factory=dict)  # --target-option NAME=VALUE (the -t dialect)
-    decimals_mm: int | None = None  # --decimals-mm
-    decimals_inch: int | None = None  # --decimals-inch
-    pulse_format: str = "vcd"  # --emit=pulses: vcd | csv | npz | queue
-    pulse_mode: str = "exact"  # --emit=pulses: exact | interp (SZGH 2 ms interpolation)
-    verify: bool = True  # -fno-verify: skip the verify pass after plan (timing, pulses)
-    # the pass manager (cncc/pipeline, docs/architecture.md "Pipeline")
-    passes: str = ""  # -p 'name{opt=value},name2': the passes instead of the default pipeline
-    verify_each: bool = False  # --verify-each: check the IR invariants after every pass
-    print_after: tuple[str, ...] = ()  # --print-after=NAME: the IR after these passes
-    print_file: str | None = None  # --print-file=FILE: where --print-after writes (default: stderr)
-    time_passes: bool = False  # --time-passes: the per-pass timing table on stderr
-    keep_trajectory: bool = False  # --emit=timing: keep the trajectories in Result.runs (cncc.api), never stream
-    # the command line (cncc/cli.py): project configuration and what the diagnostics options ask
-    project_config: bool = False  # read cncc.toml and the modeline per input (cncc/config.py)
-    given: frozenset[str] = frozenset()  # fields set on the command line (they beat cncc.toml and the modeline)
-    policy: WarningPolicy = field(default_factory=WarningPolicy)  # -w, -Wno-CODE, -Werror=CODE, -fmax-errors
 
 
 @dataclass(slots=True)
@@ -123,77 +86,6 @@ def read_input(path: str, sources: SourceMap, sink: DiagnosticSink, stdin: TextI
         sink.emit(dg.CANNOT_READ, NO_SPAN, f"cannot read {path}: {exc.strerror or exc}")
         return None
     return sources.add(path, decode(data))
-
-
-def resolve_dialect(opts: Options, sink: DiagnosticSink) -> Dialect | None:
-    name = opts.dialect or DEFAULT_DIALECT
-    try:
-        dialect = dialect_file(name) if name.endswith(".toml") else load_dialect(name)
-        unknown = [k for k in opts.dialect_options if k not in dialect.options]
-        if unknown:
-            from cncc.flags import unknown_option
-
-            sink.emit(dg.BAD_OPTION, NO_SPAN, unknown_option(unknown[0], opts.dialect_options[unknown[0]],
-                                                             dialect.options, dialect.name))
-            return None
-        if opts.dialect_options:
-            dialect = dialect.with_options(opts.dialect_options)
-    except DialectError as exc:
-        sink.emit(dg.BAD_OPTION, NO_SPAN, str(exc))
-        return None
-    return dialect
-
-
-def dialect_file(path: str) -> Dialect:
-    """A dialect TOML file (a dialect of one's own, as the language server also reads)."""
-    import tomllib
-
-    from cncc.dialects import parse_dialect
-
-    try:
-        with open(path, "rb") as fh:
-            return parse_dialect(tomllib.load(fh))
-    except (OSError, tomllib.TOMLDecodeError) as exc:
-        raise DialectError(f"{path}: {exc}") from None
-
-
-def resolve_machine(name: str, sink: DiagnosticSink) -> MachineModel | None:
-    try:
-        from cncc import machines  # data + loader (may be absent in minimal builds)
-    except ImportError:
-        return default_machine()
-    loader = getattr(machines, "load_machine", None)
-    if loader is None:
-        return default_machine()
-    try:
-        model: MachineModel = loader(name)
-    except (ValueError, OSError) as exc:
-        sink.emit(dg.BAD_OPTION, NO_SPAN, f"machine {name!r}: {exc}")
-        return None
-    return model
-
-
-def apply_dialect_to_machine(machine: MachineModel, opts: Options, sink: DiagnosticSink) -> MachineModel:
-    """The controller's rapid type (SYNTEC Pr411, SZGH P9_D6) overrides the machine's
-    rapid mode when the user sets it (``-frapid_type=...``); the dialect's own default
-    applies only to the machine model that emulates that controller."""
-    from dataclasses import replace
-
-    from cncc.ir.machine import RapidMode
-
-    value = opts.dialect_options.get("rapid_type")
-    if value is None:
-        return machine
-    try:
-        mode = RapidMode(str(value))
-    except ValueError:
-        sink.emit(dg.BAD_OPTION, NO_SPAN, f"-frapid_type={value}: expected 'interpolated' or 'independent'")
-        return machine
-    return replace(machine, rapid_mode=mode)
-
-
-def default_machine() -> MachineModel:
-    return MachineModel("generic-mill", tuple(Axis(a) for a in "XYZ"))
 
 
 # ---- offsets and tools -----------------------------------------------------------------
@@ -252,7 +144,9 @@ def interp_options(opts: Options, machine: MachineModel, sink: DiagnosticSink) -
     refs = tuple(tuple(r) + (0.0,) * (6 - len(r)) for r in machine.reference_positions_mm) or ((0.0,) * 6,)
     m_codes = {code_tenths(name[1:]): (m.meaning or "machine function") for name, m in machine.m_codes}
     table_failed = any(d.code == dg.BAD_OFFSETS_FILE for d in sink.items)
-    listed = frozenset(lengths) | frozenset(radii) if opts.tools_file and not table_failed else None
+    # only a LinuxCNC tool table (.tbl) lists tools by T number; cncc's TOML tables list offset numbers
+    tool_table = bool(opts.tools_file) and str(opts.tools_file).endswith(".tbl") and not table_failed
+    listed = frozenset(lengths) | frozenset(radii) if tool_table else None
     iopts = InterpOptions(work_offsets_mm=work, tool_lengths_mm=lengths, tool_radii_mm=radii, tool_numbers=listed,
                           reference_mm=refs, block_delete=opts.block_delete, strict=opts.strict,  # type: ignore[arg-type]
                           machine_m_codes=m_codes)
@@ -454,55 +348,6 @@ def pass_report(ins: Any, opts: Options, sink: DiagnosticSink) -> str:
     return text
 
 
-def output_dialect(dialect: Dialect, opts: Options, sink: DiagnosticSink) -> Dialect | None:
-    """The dialect --emit=gcode writes: -t, else the input dialect."""
-    if not opts.target or opts.target == dialect.name:
-        if not opts.target_options:
-            return dialect
-        try:
-            return dialect.with_options(opts.target_options)
-        except DialectError as exc:
-            sink.emit(dg.BAD_OPTION, NO_SPAN, str(exc))
-            return None
-    return resolve_dialect(Options(dialect=opts.target, dialect_options=opts.target_options), sink)
-
-
-TRANSFORM_CODES = (("rotate_on", "rotate_off"), ("mirror_on", "mirror_off"), ("scale_on", "scale_off"))
-
-
-def translation_prepare(cmds: Iterable[Item], dialect: Dialect, opts: Options,
-                        sink: DiagnosticSink) -> tuple[Iterable[Item], frozenset[str], frozenset[Any]]:
-    """Cycles the target cannot keep expanded now (before the transforms), notes for what cncc applies;
-    the kept cycle kinds and the rotation, mirror and scaling records the target runs itself."""
-    from cncc.backends.gcode import make_target
-    from cncc.backends.gcode.keep_transforms import kept_transforms
-    from cncc.backends.gcode.translate import kept_cycle_kinds, prepare
-    from cncc.passes.expand_cycles import expand
-
-    target = output_dialect(dialect, opts, sink)
-    if target is None:
-        return cmds, frozenset(), frozenset()
-    tgt = make_target(target)
-    if not any(tgt.has(on) and tgt.has(off) for on, off in TRANSFORM_CODES):  # nothing to keep: stream
-        return prepare(cmds, tgt, expand, sink, frozenset()), kept_cycle_kinds(tgt), frozenset()
-    from cncc.ir.batch import expand as expand_batches
-
-    items = list(cmds)  # the keep decision looks at a whole transform before its first move
-    if not any(x.frame.rotation is not None or x.frame.mirror is not None or x.frame.scaling is not None
-               for x in items):
-        return prepare(items, tgt, expand, sink, frozenset()), kept_cycle_kinds(tgt), frozenset()
-    listed = list(expand_batches(items))
-
-    def step_mm(units: Units) -> float:
-        unit = Units.INCH if opts.units == "inch" else Units.MM if opts.units == "mm" else units
-        default = tgt.decimals_inch if unit is Units.INCH else tgt.decimals_mm
-        chosen = opts.decimals_inch if unit is Units.INCH else opts.decimals_mm
-        return 10.0 ** -(default if chosen is None else chosen) * unit.mm_per_unit
-
-    kept = kept_transforms(listed, tgt, step_mm)
-    return prepare(listed, tgt, expand, sink, kept), kept_cycle_kinds(tgt), kept
-
-
 def guessed_dialect(src: SourceFile, opts: Options, sink: DiagnosticSink) -> Dialect | None:
     from cncc.frontend.detect import detect, numbers_warning
 
@@ -686,181 +531,3 @@ def _file_setup(base_opts: Options, base_dialect: Dialect, base_machine: Machine
             return None
         dialect = chosen
     return opts, dialect, machine
-
-
-def run_backend(items: Iterator[Item], src: SourceFile, sources: SourceMap, dialect: Dialect,
-                machine: MachineModel, opts: Options, sink: DiagnosticSink,
-                keep_runs: list[Any] | None = None, manager: Any = None) -> Iterator[str]:
-    from cncc.ir.batch import expand as expand_batches
-
-    frame0 = Frame(units=Units.INCH if dialect.default_units == "inch" else Units.MM)
-    cmds = expand_batches(items)  # lazy: the backends that take batches of moves read ``items``
-    if opts.emit == "canon":
-        from cncc.backends.canon import emit_canon
-
-        return emit_canon(items, frame0, dialect.raw.get("canon"))
-    if opts.emit == "ir":
-        from cncc.backends.irdump import dump_ir
-
-        return dump_ir(cmds, sources)
-    if opts.emit == "gcode":
-        from cncc.backends.gcode import EmitOptions, emit_gcode
-        from cncc.passes.expand_cycles import expand
-
-        target = output_dialect(dialect, opts, sink)
-        if target is None:
-            return iter(())
-        eopts = EmitOptions(decimals_mm=opts.decimals_mm, decimals_inch=opts.decimals_inch,
-                            line_numbers=opts.line_numbers, units=opts.units,
-                            same_dialect=target.name == dialect.name, expand_cycle=expand,
-                            keep_subprograms=opts.keep_subprograms and not opts.expand, from_program_start=True)
-        if opts.expand and opts.annotate_time:  # -E --annotate-time
-            from cncc.backends.timing import annotated_commands
-
-            cmd_list = list(cmds)
-            runs = timing_runs(cmd_list, machine, opts, sink, manager)
-            cmds = iter(annotated_commands(cmd_list, runs, sources, src.name, dialect))
-        return emit_gcode(cmds if opts.expand and opts.annotate_time else items, target, eopts, sink)
-    if opts.emit == "timing":
-        from cncc.backends.timing import streamable, streamed_timing_report, timing_report
-        from cncc.backends.timing.progress import track_source
-
-        color = opts.output in (None, "-") and sys.stdout.isatty()
-        width = shutil.get_terminal_size().columns if color else None  # the text report fits the terminal
-        if streamable(opts, machine):  # -O0 from the batches, without a command list (timing/streamed.py)
-            return streamed_timing_report(track_source(items, len(src.text), src.source_id), machine, src, sources,
-                                          dialect, opts.report_format, sink, color=color, width=width)
-        cmd_list = list(track_source(cmds, len(src.text), src.source_id))
-        runs = timing_runs(cmd_list, machine, opts, sink, manager)
-        if keep_runs is not None:
-            keep_runs.extend(runs)
-        return timing_report(cmd_list, runs, src, sources, dialect, opts.report_format, sink,
-                             annotate=opts.annotate_time, color=color, width=width)
-    if opts.emit == "pulses":
-        return pulse_backend(cmds, machine, opts, sink, manager)
-    if opts.emit == "none":
-        for _ in items:
-            pass
-        return iter(())
-    sink.emit(dg.NOT_SUPPORTED, NO_SPAN, f"--emit={opts.emit} is not available yet")
-    for _ in cmds:
-        pass
-    return iter(())
-
-
-def plan_trajectory(cmds: list[Command], machine: MachineModel, level: int, sink: DiagnosticSink,
-                    verify: bool = True, soft_limits: bool = False, quiet: bool = False,
-                    manager: Any = None, spec: str = "") -> tuple[Any, str]:
-    """(Trajectory, how it was made): the planning stage of the pipeline -- blend, plan at
-    ``level`` (-O0: the nominal estimate), verify (``verify``, -O1..-O3; its violations
-    become diagnostics) -- as :func:`cncc.pipeline.builder.plan_passes` makes it.
-
-    ``cmds`` are in machine coordinates (``to-machine`` ran in ``path_passes``); blend keeps
-    their order and count, so ``Trajectory.cmd_index`` still indexes ``cmds``.  Soft limits
-    are checked only when the work offsets are known (``soft_limits``: ``--offsets`` given):
-    with the default zero offsets, program coordinates are no machine positions.
-    ``manager``: the compilation's pass manager; ``spec``: its ``-p`` text.
-    """
-    from cncc.passes import PassContext
-    from cncc.pipeline import PipelineConfig
-    from cncc.pipeline.builder import plan_passes
-    from cncc.pipeline.manager import PassManager
-
-    pm = manager if manager is not None else PassManager()
-    passes = plan_passes(PipelineConfig(machine_coords=True, spec=spec), level, verify=verify,
-                         soft_limits=soft_limits, quiet=quiet)
-    ctx = PassContext(sink=sink, machine=machine)
-    for _ in pm.run(passes, cmds, ctx, stage="plan", label=f"-O{level} on {machine.name}"):
-        pass
-    if ctx.trajectory is None:  # a -p plan stage without plan: the nominal estimate, for the report
-        from cncc.backends.nominal import nominal_trajectory
-
-        return nominal_trajectory(cmds, machine), "nominal: length / feed (no plan pass in -p)"
-    return ctx.trajectory, ctx.plan_how
-
-
-PULSE_BINARY_FORMATS = ("npz",)
-
-
-def writes_own_output(opts: Options) -> bool:
-    """True when the backend streams straight into ``opts.output`` (pulses to a file)."""
-    return opts.emit == "pulses" and opts.output not in (None, "-")
-
-
-def pulse_option_problem(opts: Options, formats: tuple[str, ...], modes: tuple[str, ...]) -> str:
-    """What is wrong with the --emit=pulses options ('' when nothing)."""
-    to_stdout = opts.output in (None, "-")
-    if opts.pulse_format not in formats:
-        return f"unknown --pulse-format={opts.pulse_format} (choose from {', '.join(formats)})"
-    if opts.pulse_mode not in modes:
-        return f"unknown --pulse-mode={opts.pulse_mode} (choose from {', '.join(modes)})"
-    if opts.pulse_format in PULSE_BINARY_FORMATS and to_stdout:
-        return f"--pulse-format={opts.pulse_format} is binary: name the output file with -o FILE"
-    if not to_stdout and len(opts.inputs) > 1:
-        return "--emit=pulses -o FILE takes one input program"
-    return ""
-
-
-def pulse_backend(cmds: Iterator[Command], machine: MachineModel, opts: Options, sink: DiagnosticSink,
-                  manager: Any = None) -> Iterator[str]:
-    """--emit=pulses: plan at -O<level>, then step/dir pulses; text to stdout, or streamed into -o FILE."""
-    import io
-
-    from cncc.backends.pulses import FORMATS, MODES, generate_pulses, reversal_pauses, write_pulses
-    from cncc.backends.pulses import progress as pulse_progress
-    from cncc.backends.timing import event_pauses
-
-    fmt, to_stdout = opts.pulse_format, opts.output in (None, "-")
-    problem = pulse_option_problem(opts, FORMATS, MODES)
-    cmd_list = list(cmds)
-    if problem:
-        sink.emit(dg.BAD_OPTION, NO_SPAN, problem)
-        return iter(())
-    traj, _ = plan_trajectory(cmd_list, machine, opts.opt_level, sink, verify=opts.verify,
-                              soft_limits=opts.offsets_file is not None, quiet=opts.quiet, manager=manager,
-                              spec=opts.passes)
-    pauses = event_pauses(cmd_list, traj.cmd_index, machine)  # the timing report's event times
-    reversals = reversal_pauses(traj, machine, mode=opts.pulse_mode)
-    chunks = pulse_progress.track(
-        generate_pulses(traj, machine, mode=opts.pulse_mode, spans=[c.span for c in cmd_list], sink=sink,
-                        pauses=pauses, reversals=reversals),
-        round(traj.duration_total_s * 1e9) + sum(ns for _, ns in pauses) + reversals.total_ns,
-        pulse_progress.estimated_steps(traj, machine), quiet=opts.quiet)
-    if to_stdout:
-        buf = io.StringIO()
-        write_pulses(chunks, fmt, buf)
-        return iter((buf.getvalue(),))
-    write_stream(opts.output or "-", opts.inputs, sink, lambda fh: write_pulses(chunks, fmt, fh))
-    return iter(())
-
-
-def timing_runs(cmds: list[Command], machine: MachineModel, opts: Options, sink: DiagnosticSink,
-                manager: Any = None) -> list[Any]:
-    """One planned Run per report column (``--compare``, else -O<level> and the nominal estimate)."""
-    from cncc.backends.timing import Run, default_columns, parse_compare
-
-    specs = parse_compare(opts.compare, opts.opt_level) if opts.compare else default_columns(opts.opt_level)
-    if isinstance(specs, str):
-        sink.emit(dg.BAD_OPTION, NO_SPAN, specs)
-        return []
-    runs = []
-    for spec in specs:
-        model = machine if spec.machine is None else resolve_machine(spec.machine, sink)
-        if model is None:
-            return []
-        traj, how = plan_trajectory(cmds, model, spec.level, sink, verify=opts.verify,
-                                    soft_limits=opts.offsets_file is not None, quiet=opts.quiet, manager=manager,
-                                    spec=opts.passes)
-        runs.append(Run(spec.label, model, spec.level, traj, how, nominal=spec.level == 0,
-                        reversals=reversal_events(traj, model, opts)))
-    return runs
-
-
-def reversal_events(traj: Any, machine: MachineModel, opts: Options) -> tuple[tuple[int, int, str], ...]:
-    """(command, ns, what) of the reversal pauses --emit=pulses inserts for ``traj`` on ``machine``."""
-    if not any(a.step.reversal_delay_s > 0 for a in machine.axes):
-        return ()
-    from cncc.backends.pulses import MODES, reversal_pauses
-
-    mode = opts.pulse_mode if opts.pulse_mode in MODES else "exact"
-    return tuple(reversal_pauses(traj, machine, mode=mode).by_command(traj.cmd_index))

@@ -25,6 +25,7 @@ from cncc.frontend import (
     rs274,  # LinuxCNC/grbl G61, G92.1, G10 L20 ...
     rs274_curves,  # G5, G5.1, G5.2/G5.3
     rs274_g10,  # G10 with LinuxCNC's tables
+    rs274_io,  # M62-M68 digital and analog I/O
     rs274_probe,  # G38.2 - G38.5
     rs274_sync,  # G33, G33.1
     rs274_tools,  # M61
@@ -36,7 +37,7 @@ from cncc.frontend.linuxcnc import g76, lathe  # LinuxCNC G7/G8 and G76
 from cncc.frontend.registry import BLOCK_HOOKS, HANDLERS, MOTIONS, ORDER, HandlerTable
 
 REGISTERING_MODULES = (ops, cycles, holes, mcodes, rs274, rs274_g10, rs274_curves, rs274_sync, rs274_probe,
-                       rs274_tools, rs274_words, saved_points,
+                       rs274_io, rs274_tools, rs274_words, saved_points,
                        transforms, lathe, g76)
 
 

@@ -52,7 +52,7 @@ class InterpOptions:
     work_offsets_mm: dict[int, Vec6] = field(default_factory=dict)  # 1 = G54 ...
     tool_lengths_mm: dict[int, float] = field(default_factory=dict)  # H number -> length
     tool_radii_mm: dict[int, float] = field(default_factory=dict)  # D number -> radius
-    tool_numbers: frozenset[int] | None = None  # the tools a given tool table lists (None: no table given)
+    tool_numbers: frozenset[int] | None = None  # the T numbers a LinuxCNC tool table (.tbl) lists (None: none given)
     reference_mm: tuple[Vec6, ...] = (ZERO6,)  # G28, G30 P2, P3, P4 in machine coordinates
     block_delete: bool = True  # skip blocks starting with '/'
     strict: bool = False

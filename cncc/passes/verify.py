@@ -65,12 +65,12 @@ REL = 1e-6  # relative slack on every limit (floating point)
 MAX_REPORTS = 5  # diagnostics per kind; the rest are counted
 PLAN_MIN_FEED_MM_MIN = 0.1  # the planners' documented smallest feed (docs/planning.md, W0606)
 STRICT_CONTINUITY = True  # default of the strict rule (-O2 plans arcs on their path coordinate and blends every corner)
-STRICT_JERK = False
+STRICT_JERK = True
 """Default of the averaged-jerk half of the strict rule (E0618 as ``|a(t) - a(t - T)| <= max_jerk * T``).
-Off by default: -O2 coasts at the block boundaries where the curvature jumps (``planning/scurve.py``),
-so it passes at those (every bench kind at 1k, examples, tests), but a curvature step at a vertex
-inside a block sits in a ramp whose jerk can add to it (the 10k arc kind has one); the per-boundary
-E0618 rule stays on.  ``verify{strict_jerk=true}`` turns it on."""
+On: -O2 coasts at the block boundaries where the curvature jumps and ends a block at a vertex inside
+one where the step with the neighbouring ramp's jerk is not proven within ``j T``
+(``planning/scurve.py``, ``unsafe_steps``).  ``verify{strict_jerk=false}`` turns it off (the
+per-boundary E0618 rule stays on)."""
 
 
 @dataclass

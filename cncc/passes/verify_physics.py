@@ -95,11 +95,20 @@ def steps_declared(v_before: FloatArray, v_after: FloatArray, step_mm_s: FloatAr
     return out
 
 
-def smeared_jerk_bad(traj: Trajectory, b: Boundaries, jmax_mm_s3: FloatArray, period_s: float) -> np.ndarray:
+def smeared_jerk_bad(traj: Trajectory, b: Boundaries, jmax_mm_s3: FloatArray, period_s: float,
+                     chunk: int = 8192) -> np.ndarray:
     """Boundary flags (``n + 1``): ``|a(t) - a(t - T)| > jmax T`` at a breakpoint at or
-    within one period after that boundary."""
-    t_end = traj.duration_total_s
+    within one period after that boundary (``chunk`` boundaries at a time: bounded memory)."""
     t_b = b.t_s
+    bad = np.zeros(t_b.size, bool)
+    for lo in range(0, t_b.size, chunk):
+        hi = min(t_b.size, lo + chunk)
+        bad[lo:hi] = _smeared_chunk(traj, t_b[lo:hi], jmax_mm_s3, period_s)
+    return bad
+
+
+def _smeared_chunk(traj: Trajectory, t_b: FloatArray, jmax_mm_s3: FloatArray, period_s: float) -> np.ndarray:
+    t_end = traj.duration_total_s
     # a(t) - a(t - T) at t = t_b (left and right) and at t = t_b + T (left and right)
     cand = np.concatenate([t_b, t_b + period_s])
     owner = np.concatenate([np.arange(t_b.size), np.arange(t_b.size)])

@@ -201,7 +201,7 @@ def test_contour_example_keeps_the_averaged_jerk() -> None:
 
 def test_tangent_joint_speed_is_the_closed_form_curvature_step_cap() -> None:
     # a line into a tangent arc of radius r: the centripetal acceleration steps by v^2 / r on
-    # the axis of the normal (Y); the joint is crossed at sqrt(1/2 j_Y T r) (below the arc's
+    # the axis of the normal (Y); the joint is crossed at sqrt(b j_Y T r) (below the arc's
     # own caps sqrt(A r / 2) and (j r^2 / 4)^(1/3)), and both sides coast around it
     from cncc.machines import load_machine
     from cncc.passes.plan import plan_commands
@@ -214,12 +214,92 @@ def test_tangent_joint_speed_is_the_closed_form_curvature_step_cap() -> None:
     law = traj.path
     assert law is not None
     k = int(np.flatnonzero(law.seg == law.seg.max())[0])  # the first phase on the arc
-    expected = math.sqrt(0.5 * j_y * period * r)  # blending.TANGENT_STEP_SHARE = 1/2
+    from cncc.passes.planning.blending import TANGENT_STEP_SHARE as share
+
+    # the joint speed: the step b = v^2 / (r j_Y T) within share * (1 - rho) with rho = v^3 / (r^2 j_Y)
+    # the turning share, taken at the first estimate sqrt(share j_Y T r) (above the final speed)
+    first = math.sqrt(share * j_y * period * r)
+    expected = math.sqrt(share * (1 - first**3 / (r * r * j_y)) * j_y * period * r)
     assert expected < min(math.sqrt(0.5 * 1500.0 * r), (0.25 * j_y * r * r) ** (1 / 3))
     assert law.v_mm_s[k] == pytest.approx(expected, rel=1e-6)
-    # the coasts: zero path jerk for c = T b / (1 - rho) on both sides, b = 1/2
+    # the coasts: zero path jerk for c = T b / (1 - rho) on both sides, at most T
+    b = expected**2 / r / (j_y * period)
     turn = expected**3 / (r * r) / j_y
-    coast = period * 0.5 / (1 - turn)
+    coast = period * b / (1 - turn)
+    assert coast < period
     assert law.j_mm_s3[k] == 0.0 and law.j_mm_s3[k - 1] == 0.0
     assert traj.duration_s[k] == pytest.approx(coast, rel=1e-6)
     assert traj.duration_s[k - 1] == pytest.approx(coast, rel=1e-6)
+
+
+# three tangent arcs of the 10k arc bench kind (lines 7765-7767 of bench/pathgen.py's arcs(10000)):
+# the joint of the last two sits inside the block's acceleration ramp, where the centripetal step
+# plus the ramp's own jerk within one period exceeded j T (E0618 under strict_jerk before the
+# block was ended there)
+THREE_ARCS = """G21 G90 G17 G94
+G0 X158.1517 Y190.0863 Z5
+G1 Z-1 F600
+F2000
+G2 X157.5530 Y191.5262 I4.0404 J2.5244
+G2 X158.1194 Y192.3811 I1.9925 J-0.7050
+G2 X159.8908 Y192.8556 I1.3426 J-1.4686
+G0 Z5
+M30
+"""
+
+
+def _averaged_jerk_excess(traj, machine, per_period: int = 40) -> float:  # type: ignore[no-untyped-def]
+    """max over a dense grid (``per_period`` samples per period, over the whole motion) of
+    ``|a(t) - a(t - T)| / (j_i T)``: an independent look at the averaged jerk, not at verify's
+    sampled instants."""
+    period = machine.interpolation_period_s
+    jmax = np.array([machine.axis(n).max_jerk_mm_s3 if machine.axis(n) is not None else np.inf
+                     for n in ("X", "Y", "Z", "A", "B", "C")])[: traj.p0_mm.shape[1]]
+    t = np.arange(0.0, traj.duration_total_s, period / per_period)
+    _, _, a, _ = traj.sample(t)
+    _, _, a_prev, _ = traj.sample(np.clip(t - period, 0.0, None))
+    a_prev = np.where((t - period < 0)[:, None], 0.0, a_prev)
+    return float((np.abs(a - a_prev) / (jmax[None, :] * period)).max())
+
+
+def test_curvature_step_inside_a_ramp_ends_a_block() -> None:
+    from cncc.api import compile_commands
+    from cncc.machines import load_machine
+    from cncc.passes.plan import plan_commands
+    from cncc.passes.planning import scurve
+
+    cmds, _ = compile_commands(THREE_ARCS, emit="timing")
+    assert "E0618" not in _strict_jerk_codes(list(cmds))
+    machine = load_machine("generic-mill")
+    motion = list(cmds)
+    traj = plan_commands(motion, machine, 2)
+    assert _averaged_jerk_excess(traj, machine) <= 1.0 + 1e-6
+    # without the re-planning (no vertex inside a block is ever unsafe) the same path breaks it
+    real = scurve.unsafe_steps
+    try:
+        scurve.unsafe_steps = lambda seg, starts, ph, cand, *a: cand[:0]  # type: ignore[assignment]
+        loose = plan_commands(motion, machine, 2)
+    finally:
+        scurve.unsafe_steps = real  # type: ignore[assignment]
+    assert _averaged_jerk_excess(loose, machine) > 1.0 + 1e-3
+    assert loose.duration_total_s <= traj.duration_total_s * 1.02  # the ended block costs little
+
+
+@pytest.mark.parametrize("kind", ["raster", "arcs"])
+def test_vertices_declared_safe_keep_the_dense_averaged_jerk(kind: str) -> None:
+    # every vertex left inside a block (the bound or the sampled check said safe) keeps the
+    # averaged jerk within j T on a dense grid, not only at verify's instants
+    import sys
+    from pathlib import Path
+
+    from cncc.api import compile_commands
+    from cncc.machines import load_machine
+    from cncc.passes.plan import plan_commands
+
+    sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "bench"))
+    from pathgen import KINDS
+
+    cmds, _ = compile_commands(KINDS[kind](120), emit="timing")
+    machine = load_machine("generic-mill")
+    traj = plan_commands(list(cmds), machine, 2)
+    assert _averaged_jerk_excess(traj, machine, per_period=10) <= 1.0 + 1e-3

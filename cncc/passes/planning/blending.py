@@ -152,9 +152,13 @@ def velocity_step_caps(seg: Segments, limits: AxisLimits, period_s: float) -> Fl
     return caps
 
 
-TANGENT_STEP_SHARE = 0.5
-"""Share of ``j_i T`` a curvature step at a tangent joint may take (the rest: the path's own
-jerk within the same period, which the controller's averaging adds to it)."""
+TANGENT_STEP_SHARE = 0.95
+"""Share of what a curvature step at a tangent joint may take of ``(1 - r_i) j_i T``, ``r_i =
+v^3 kappa^2 / j_i`` the circle's turning jerk share at the joint.  At a block boundary the coasts
+(``scurve.coast_times``, ``c = T b / (1 - r)``) leave only that turning jerk within the period, so
+the step ``b`` plus the path's jerk stay within ``j_i T`` while ``b <= 1 - r``; inside a block
+``scurve.unsafe_steps`` ends the block where the ramp's jerk would add too much.  (A flat 1/2 of
+``j_i T`` while vertices inside blocks had no such check; 0.7 before the turning share was used.)"""
 
 CURVATURE_STEP_SHARE = 0.5
 """Share of ``j_i T`` the centripetal acceleration step at a curvature jump may take where
@@ -173,10 +177,18 @@ def curvature_step_caps(seg: Segments, limits: AxisLimits, period_s: float) -> F
     jump = np.abs(c0[1:] - c1[:-1])
     # a tangent joint has no tangential acceleration step: the whole j T is the centripetal one's
     tangent = seg.turn().max(axis=1, initial=0.0) < 1e-9
-    share = np.where(tangent, TANGENT_STEP_SHARE, CURVATURE_STEP_SHARE)[:, None]
-    budget = share * limits.jmax_mm_s3[None, :] * period_s
+    jt = limits.jmax_mm_s3[None, :] * period_s
     with np.errstate(divide="ignore"):
-        v2 = np.where(jump > 1e-12, budget / np.maximum(jump, 1e-300), np.inf).min(axis=1)
+        v2 = np.where(jump > 1e-12, TANGENT_STEP_SHARE * jt / np.maximum(jump, 1e-300), np.inf).min(axis=1)
+    # the turning share at that speed (an over-estimate at the lower speed it leads to, so the
+    # lowered cap keeps b <= TANGENT_STEP_SHARE (1 - r) at its own speed)
+    kappa = np.abs(geo.kappa)
+    k2 = np.maximum(kappa[1:], kappa[:-1]) ** 2
+    with np.errstate(invalid="ignore", over="ignore"):
+        turn = np.where(np.isfinite(v2), v2**1.5 * k2, 0.0)[:, None] / limits.jmax_mm_s3[None, :]
+    share = np.where(tangent[:, None], TANGENT_STEP_SHARE * (1.0 - np.clip(turn, 0.0, 0.5)), CURVATURE_STEP_SHARE)
+    with np.errstate(divide="ignore"):
+        v2 = np.where(jump > 1e-12, share * jt / np.maximum(jump, 1e-300), np.inf).min(axis=1)
     out: FloatArray = np.sqrt(v2)
     return out
 

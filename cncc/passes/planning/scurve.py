@@ -261,8 +261,149 @@ def scurve_profile(seg: Segments, raw_acap: FloatArray | None = None, jmax_mm_s3
     With the per-axis jerk limits and the interpolation period, a block's acceleration is
     also capped at its interior vertices by :func:`step_accel_caps` (the acceleration
     changes direction there; at block boundaries it is zero), and a block boundary where
-    the curvature jumps gets a coast on both sides (:func:`coast_times`)."""
+    the curvature jumps gets a coast on both sides (:func:`coast_times`).  A vertex inside a
+    block where the curvature jumps and whose step, with the axis jerk of the phases within
+    one period of it, could exceed ``j_i T`` (:func:`unsafe_steps`) ends a block and gets
+    coasts too; the part is re-planned until none is left (a few rounds, then every such
+    vertex ends a block)."""
     starts = blocks(seg)
+    if jmax_mm_s3 is None or period_s <= 0 or seg.count < 2 or seg.geo is None:
+        return _profile(seg, starts, raw_acap, jmax_mm_s3, period_s)
+    jump, _ = curvature_jumps(seg)
+    jumpy = np.flatnonzero(jump[1:-1].max(axis=1, initial=0.0) > 1e-12) + 1
+    for round_ in range(STEP_ROUNDS + 1):
+        out = _profile(seg, starts, raw_acap, jmax_mm_s3, period_s)
+        cand = np.setdiff1d(jumpy, starts, assume_unique=True)
+        if cand.size == 0:
+            return out
+        bad = cand if round_ == STEP_ROUNDS else unsafe_steps(seg, starts, out, cand, jump, jmax_mm_s3, period_s)
+        if bad.size == 0:
+            return out
+        starts = np.union1d(starts, bad)
+    return _profile(seg, starts, raw_acap, jmax_mm_s3, period_s)
+
+
+STEP_ROUNDS = 4
+"""Re-plans of a part for curvature steps inside blocks (:func:`unsafe_steps`); after these,
+every vertex inside a block where the curvature jumps ends a block."""
+
+STEP_MARGIN = 0.02
+"""Share of ``j_i T`` :func:`unsafe_steps` keeps free (arcs whose radius changes, rounding)."""
+
+
+def unsafe_steps(seg: Segments, starts: np.ndarray, ph: Phases, cand: np.ndarray, jump: FloatArray,
+                 jmax_mm_s3: FloatArray, period_s: float) -> np.ndarray:
+    """The vertices of ``cand`` (inside blocks, the curvature jumps there) where the averaged
+    jerk rule ``|a(t) - a(t - T)| <= j_i T`` is not proven by the profile ``ph``.
+
+    At such a vertex the axis acceleration steps by ``v^2 |p''_in - p''_out|`` (the tangent
+    is continuous, so the tangential part does not step); within any period ``[t - T, t]``
+    around it (``t`` the vertex' time or one period later) the rest changes by at most ``T``
+    times the axis jerk there, which on a segment with unit tangent bound ``u_i`` and
+    curvature ``kappa`` is at most ``A_i sqrt((|s3| + v^3 kappa^2)^2 + (3 v |s2| kappa)^2)``
+    (``s2``, ``s3`` the path acceleration and jerk; ``A_i = |u_i|`` on a line, 1 on an axis
+    an arc moves).  With ``v``, ``|s2|``, ``|s3|`` the largest over the phases that meet one
+    period either side of the phase holding the vertex (a superset of the windows), the
+    vertex is safe when the step plus ``T`` times that bound stays within
+    ``(1 - STEP_MARGIN) j_i T`` on every axis and those phases cross no block boundary where
+    the curvature jumps too."""
+    t0, dur = ph.t0, ph.dur
+    t1 = t0 + dur
+    v1 = ph.v0 + ph.a0 * dur + ph.j * dur * dur / 2
+    a1 = ph.a0 + ph.j * dur
+    vmax_p = np.maximum(np.abs(ph.v0), np.abs(v1))
+    amax_p = np.maximum(np.abs(ph.a0), np.abs(a1))
+    jmax_p = np.abs(ph.j)
+    sv = seg.s0[cand]
+    p = np.clip(np.searchsorted(ph.s0, sv, side="right") - 1, 0, t0.size - 1)
+    lo = np.minimum(np.searchsorted(t1, t0[p] - period_s, side="left"), p)
+    hi = np.maximum(np.searchsorted(t0, t1[p] + period_s, side="right") - 1, p)
+    # maxima over the phase ranges [lo, hi]
+    span = hi - lo + 1
+    first = np.concatenate([[0], np.cumsum(span)[:-1]])
+    idx = np.repeat(lo - first, span) + np.arange(int(span.sum()))
+    vw = np.maximum.reduceat(vmax_p[idx], first)
+    aw = np.maximum.reduceat(amax_p[idx], first)
+    jw = np.maximum.reduceat(jmax_p[idx], first)
+    # block of each phase, and the boundaries (vertex starts[b], b >= 1) where the curvature jumps
+    blk = np.clip(np.searchsorted(seg.s0[starts], ph.s0 + 1e-12 * (1 + np.abs(ph.s0)), side="right") - 1,
+                  0, starts.size - 1)
+    jumpy_b = np.concatenate([[0], np.cumsum(jump[starts[1:]].max(axis=1, initial=0.0) > 1e-12)])
+    crosses = jumpy_b[blk[hi]] > jumpy_b[blk[lo]]
+    kappa = np.abs(seg.shape().kappa)
+    au = np.abs(seg.u)
+    amp = np.where((kappa > 0)[:, None], (au > 1e-12).astype(float), au)  # (k, m)
+    worst = np.zeros((cand.size, seg.u.shape[1]))
+    for side in (cand - 1, cand):
+        k = kappa[side]
+        bound = np.sqrt((jw + vw**3 * k**2) ** 2 + (3 * vw * aw * k) ** 2)
+        worst = np.maximum(worst, amp[side] * bound[:, None])
+    step = (vw * vw)[:, None] * jump[cand]
+    limit = (1 - STEP_MARGIN) * jmax_mm_s3[None, :] * period_s
+    bad = (step + period_s * worst > limit).any(axis=1) | crosses
+    if bad.any():  # not proven by the bound: the averaged jerk where verify samples it (E0618)
+        bad[bad] = ~_sampled_ok(seg, ph, cand[bad], jmax_mm_s3, period_s)
+    out: np.ndarray = cand[bad]
+    return out
+
+
+SAMPLED_MARGIN = 0.05
+"""Share of ``j_i T`` :func:`_sampled_ok` keeps free (on arcs the averaged jerk between the
+sampled instants may exceed its value at them by a little)."""
+
+
+def _path_state(ph: Phases, t: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """``s, s', s''`` of the profile at times ``t`` (at rest outside it)."""
+    end = ph.end_time
+    tt = np.clip(t, 0.0, end)
+    p = np.clip(np.searchsorted(ph.t0, tt, side="right") - 1, 0, ph.t0.size - 1)
+    tau = np.clip(tt - ph.t0[p], 0.0, ph.dur[p])
+    j = ph.j[p]
+    s = ph.s0[p] + ph.v0[p] * tau + ph.a0[p] * tau**2 / 2 + j * tau**3 / 6
+    v = ph.v0[p] + ph.a0[p] * tau + j * tau**2 / 2
+    a = np.where((t < 0) | (t > end), 0.0, ph.a0[p] + j * tau)
+    return s, v, a
+
+
+def _axis_accel(seg: Segments, s: FloatArray, v: FloatArray, a: FloatArray, g: np.ndarray | None = None
+                ) -> FloatArray:
+    """Axis accelerations ``p'(s) s'' + p''(s) s'^2`` (segment ``g``, or the one holding ``s``)."""
+    if g is None:
+        g = np.clip(np.searchsorted(seg.s0, s, side="right") - 1, 0, seg.count - 1)
+    local = np.clip(s - seg.s0[g], 0.0, seg.length[g])
+    _, d1, d2, _ = seg.shape().derivatives(g, local)
+    out: FloatArray = d1 * a[:, None] + d2 * (v * v)[:, None]
+    return out
+
+
+def _sampled_ok(seg: Segments, ph: Phases, cand: np.ndarray, jmax_mm_s3: FloatArray, period_s: float
+                ) -> np.ndarray:
+    """``|a(t) - a(t - T)| <= (1 - SAMPLED_MARGIN) j_i T`` at the vertices' times ``t_v`` and at
+    ``t_v + T``, both one-sided limits of the step (where verify's E0618 samples it)."""
+    sv = seg.s0[cand]
+    p = np.clip(np.searchsorted(ph.s0, sv, side="right") - 1, 0, ph.t0.size - 1)
+    lo, hi = np.zeros(cand.size), ph.dur[p].copy()
+    s0, v0, a0, j0 = ph.s0[p], ph.v0[p], ph.a0[p], ph.j[p]
+    for _ in range(BISECT_STEPS // 2):  # s is nondecreasing in the phase: bisect s(t0 + tau) = s_v
+        mid = (lo + hi) / 2
+        below = s0 + mid * (v0 + mid * (a0 / 2 + mid * j0 / 6)) < sv
+        lo, hi = np.where(below, mid, lo), np.where(below, hi, mid)
+    tv = ph.t0[p] + (lo + hi) / 2
+    _, v, a = _path_state(ph, tv)
+    a_left = _axis_accel(seg, sv, v, a, cand - 1)
+    a_right = _axis_accel(seg, sv, v, a, cand)
+    a_before = _axis_accel(seg, *_path_state(ph, tv - period_s))
+    a_after = _axis_accel(seg, *_path_state(ph, tv + period_s))
+    limit = (1 - SAMPLED_MARGIN) * jmax_mm_s3[None, :] * period_s
+    ok = np.ones(cand.size, bool)
+    for g in (a_left - a_before, a_right - a_before, a_after - a_left, a_after - a_right):
+        ok &= (np.abs(g) <= limit).all(axis=1)
+    return ok
+
+
+def _profile(seg: Segments, starts: np.ndarray, raw_acap: FloatArray | None, jmax_mm_s3: FloatArray | None,
+             period_s: float) -> Phases:
+    """The profile of :func:`scurve_profile` on the blocks that start at ``starts``."""
     length, vcap, acap, jcap, wcap = block_caps(seg, starts, raw_acap)
     nb = length.size
     bound = np.append(starts, seg.count)  # vertex of each block boundary
