@@ -206,6 +206,7 @@ def rebatch(items: Iterable[Item], sink: Any = None) -> Iterator[Item]:
             yield from run
         run.clear()
 
+    sink = _innermost(sink)
     source = iter(items)
     while True:
         x = _pull(source, sink if run else None, keep)
@@ -239,6 +240,13 @@ def rebatch(items: Iterable[Item], sink: Any = None) -> Iterator[Item]:
         else:
             yield x
     yield from flush()
+
+
+def _innermost(sink: Any) -> Any:
+    """A wrapping sink's reports reach its inner sink: those are the ones to keep back."""
+    while sink is not None and hasattr(sink, "inner"):
+        sink = sink.inner
+    return sink
 
 
 def _pull(source: Iterator[Item], sink: Any, keep: Any) -> Item | None:

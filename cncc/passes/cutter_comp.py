@@ -85,6 +85,8 @@ class CutterComp(Pass):
 
     def run_items(self, items: Iterable[Item], ctx: PassContext) -> Iterator[Item]:
         # the moves made one by one are handed on as batches again (the stages after keep their fast paths)
+        if not ctx.batches:
+            return self._items(items, ctx)
         return rebatch(self._items(items, ctx), ctx.sink)
 
     def _items(self, items: Iterable[Item], ctx: PassContext) -> Iterator[Item]:
