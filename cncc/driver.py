@@ -253,11 +253,11 @@ def path_passes(cmds: Iterable[Command], dialect: Dialect, machine: MachineModel
     ``manager``: the compilation's :class:`cncc.pipeline.manager.PassManager` (instrumented)."""
     from cncc.ir.batch import expand
 
-    return expand(path_items(cmds, dialect, machine, opts, sink, manager))
+    return expand(path_items(cmds, dialect, machine, opts, sink, manager, batches=False))
 
 
 def path_items(cmds: Iterable[Item], dialect: Dialect, machine: MachineModel, opts: Options,
-               sink: DiagnosticSink, manager: Any = None) -> Iterator[Item]:
+               sink: DiagnosticSink, manager: Any = None, batches: bool = True) -> Iterator[Item]:
     """:func:`path_passes` over commands and batches of moves (:mod:`cncc.ir.batch`)."""
     from cncc.dialects.errors import controller_sink
     from cncc.passes import PassContext
@@ -266,7 +266,8 @@ def path_items(cmds: Iterable[Item], dialect: Dialect, machine: MachineModel, op
     from cncc.pipeline.spec import SpecError
 
     pm = manager if manager is not None else PassManager()
-    ctx = PassContext(sink=controller_sink(sink, dialect.raw.get("errors")), dialect=dialect, machine=machine)
+    ctx = PassContext(sink=controller_sink(sink, dialect.raw.get("errors")), dialect=dialect, machine=machine,
+                      batches=batches)
     keep: frozenset[str] = frozenset()
     transforms: frozenset[Any] = frozenset()
     if opts.emit == "gcode" and not opts.expand:  # translation: keep the cycles the target runs alike

@@ -171,3 +171,169 @@ def command_count(items: Iterable[Item]) -> int:
 
 
 __all__ = ["ARC", "LINEAR", "RAPID", "Item", "MoveBatch", "command_count", "expand"]
+
+
+REBATCH_MIN = 16  # shorter runs of moves stay commands
+REBATCH_MAX = 8192  # rows per batch (bounds the memory a run holds)
+
+
+def rebatch(items: Iterable[Item], sink: Any = None) -> Iterator[Item]:
+    """``items`` with runs of consecutive moves made into batches again (batches pass as they are).
+
+    A run is what :meth:`MoveBatch.commands` gives back exactly: programmed rapids, lines and arcs
+    of one frame object, motion and source, arcs in the frame's plane, each starting where the one
+    before ended, and ``FeedRate`` commands (not per revolution, same frame) just before a move
+    whose feed is theirs.  A pass that works move by move (cutter compensation) hands on batches
+    again this way, so the stages after it keep their vectorised paths.
+
+    Diagnostics keep their order: while a run is held, what the stages before report (``sink``'s
+    ``emit``) is kept back, and when they report something the run is handed on first (the stages
+    after report on its moves), then the kept reports are made, as the command path orders them."""
+    run: list[Command] = []
+    feed_in_force = -1.0  # a rapid row's feed: the last feed seen (the front end's rule)
+    before = -1.0  # the feed in force before the run
+    kept: list[tuple[tuple[Any, ...], dict[str, Any]]] = []
+
+    def keep(*args: Any, **kwargs: Any) -> None:
+        kept.append((args, kwargs))
+
+    def flush() -> Iterator[Item]:
+        if len(run) - (isinstance(run[-1], FeedRate) if run else 0) >= REBATCH_MIN:
+            tail = [run.pop()] if isinstance(run[-1], FeedRate) else []
+            yield _batch_of(run, before)
+            yield from tail
+        else:
+            yield from run
+        run.clear()
+
+    sink = _innermost(sink)
+    source = iter(items)
+    while True:
+        x = _pull(source, sink if run else None, keep)
+        if kept:  # reports of the stages before: after the stages after saw the run
+            yield from flush()
+            _replay(sink, kept)
+        if x is None:
+            break
+        if isinstance(x, MoveBatch):
+            yield from flush()
+            yield x
+            feed_in_force = float(x.feed[-1])
+            continue
+        if run and not _continues(run, x):
+            yield from flush()
+        if not run:
+            before = feed_in_force
+        if isinstance(x, FeedRate):
+            feed_in_force = x.feed
+            if x.per_rev:
+                yield x
+                continue
+            run.append(x)
+        elif _row(x):
+            assert isinstance(x, Rapid | Linear | Arc)
+            run.append(x)
+            if isinstance(x, Linear | Arc):
+                feed_in_force = x.feed_mm_min
+            if len(run) >= REBATCH_MAX:
+                yield from flush()
+        else:
+            yield x
+    yield from flush()
+
+
+def _innermost(sink: Any) -> Any:
+    """A wrapping sink's reports reach its inner sink: those are the ones to keep back."""
+    while sink is not None and hasattr(sink, "inner"):
+        sink = sink.inner
+    return sink
+
+
+def _pull(source: Iterator[Item], sink: Any, keep: Any) -> Item | None:
+    """The next item (None: no more); with ``sink``, its reports go to ``keep`` meanwhile."""
+    if sink is None:
+        return next(source, None)
+    sink.emit = keep  # the instance's attribute hides the method while the stages before run
+    try:
+        return next(source, None)
+    finally:
+        del sink.emit
+
+
+def _replay(sink: Any, kept: list[tuple[tuple[Any, ...], dict[str, Any]]]) -> None:
+    for args, kwargs in kept:
+        sink.emit(*args, **kwargs)
+    kept.clear()
+
+
+def _row(c: Command) -> bool:
+    """A move a batch row can stand for."""
+    return isinstance(c, Rapid | Linear | Arc) and c.origin == PROGRAMMED and (
+        not isinstance(c, Arc) or (c.plane is c.frame.plane and abs(c.turns) < 100))
+
+
+def _continues(run: list[Command], c: Command) -> bool:
+    """``c`` may follow the run (see :func:`rebatch`)."""
+    last = run[-1]
+    frame = last.frame
+    if c.frame is not frame or c.span.source_id != last.span.source_id:
+        return False
+    if isinstance(c, FeedRate):
+        return not isinstance(last, FeedRate) and not c.per_rev
+    if not _row(c):
+        return False
+    assert isinstance(c, Rapid | Linear | Arc)
+    if isinstance(last, FeedRate):
+        if isinstance(c, Linear | Arc) and c.feed_mm_min != last.feed:
+            return False
+        if len(run) < 2:
+            return True
+        prev = run[-2]
+    else:
+        prev = last
+    assert isinstance(prev, Rapid | Linear | Arc)
+    return c.motion == prev.motion and c.start == prev.end
+
+
+def _batch_of(run: list[Command], last_feed: float) -> MoveBatch:
+    import numpy as np
+
+    moves = [c for c in run if not isinstance(c, FeedRate)]
+    first = moves[0]
+    assert isinstance(first, Rapid | Linear | Arc)
+    n = len(moves)
+    kind = np.empty(n, dtype=np.int8)
+    feed = np.empty(n)
+    turns = np.zeros(n, dtype=np.int8)
+    centre = np.zeros((n, 6))
+    fs = np.full(n, -1, dtype=np.int64)
+    fe = np.full(n, -1, dtype=np.int64)
+    s0 = np.empty(n, dtype=np.int64)
+    s1 = np.empty(n, dtype=np.int64)
+    ends = []
+    k = 0
+    pending: FeedRate | None = None
+    for c in run:
+        if isinstance(c, FeedRate):
+            pending = c
+            continue
+        assert isinstance(c, Rapid | Linear | Arc)
+        ends.append(c.end)
+        s0[k], s1[k] = c.span.start, c.span.end
+        if pending is not None:
+            fs[k], fe[k] = pending.span.start, pending.span.end
+            last_feed = pending.feed
+            pending = None
+        if isinstance(c, Rapid):
+            kind[k], feed[k] = RAPID, last_feed
+        elif isinstance(c, Linear):
+            kind[k], feed[k] = LINEAR, c.feed_mm_min
+            last_feed = c.feed_mm_min
+        else:
+            assert isinstance(c, Arc)
+            kind[k], feed[k], turns[k] = ARC, c.feed_mm_min, c.turns
+            centre[k] = c.center
+            last_feed = c.feed_mm_min
+        k += 1
+    return MoveBatch(first.span.source_id, first.frame, first.motion, first.frame.plane, first.start, kind,
+                     np.array(ends, dtype=np.float64), centre, turns, feed, s0, s1, fs, fe)

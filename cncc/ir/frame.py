@@ -40,17 +40,12 @@ class Plane(enum.Enum):
     ZX = (2, 0, 1)
     YZ = (1, 2, 0)
 
-    @property
-    def first(self) -> int:
-        return self.value[0]
+    first: int  # plain attributes, set once per member: read per move by cutter comp and the backends
+    second: int
+    normal: int
 
-    @property
-    def second(self) -> int:
-        return self.value[1]
-
-    @property
-    def normal(self) -> int:
-        return self.value[2]
+    def __init__(self, first: int, second: int, normal: int) -> None:
+        self.first, self.second, self.normal = first, second, normal
 
 
 class CompSide(enum.Enum):

@@ -40,6 +40,7 @@ class PassContext:
     plan_level: int = 2
     plan_how: str = ""
     verify_report: VerifyReport | None = None
+    batches: bool = True  # the stages after take batches (False: commands only, a pass need not re-batch)
 
 
 @dataclass(frozen=True, kw_only=True)

@@ -42,7 +42,7 @@ from typing import ClassVar
 from cncc import diagnostics as dg
 from cncc.diagnostics import Related
 from cncc.ir import ZERO6, Arc, Command, CompSide, Cycle, Frame, Linear, OriginKind, Plane, Rapid, Vec6
-from cncc.ir.batch import Item, MoveBatch, expand
+from cncc.ir.batch import Item, MoveBatch, expand, rebatch
 from cncc.ir.frame import add_offsets, sub_offsets
 from cncc.passes import Pass, PassContext, register
 from cncc.passes.comp_geometry import (
@@ -84,6 +84,12 @@ class CutterComp(Pass):
         return expand(self.run_items(cmds, ctx))
 
     def run_items(self, items: Iterable[Item], ctx: PassContext) -> Iterator[Item]:
+        # the moves made one by one are handed on as batches again (the stages after keep their fast paths)
+        if not ctx.batches:
+            return self._items(items, ctx)
+        return rebatch(self._items(items, ctx), ctx.sink)
+
+    def _items(self, items: Iterable[Item], ctx: PassContext) -> Iterator[Item]:
         comp = _Comp(self, ctx)
         # Fast path while compensation is off and nothing is pending: a motion (or a batch of
         # moves) in an uncompensated frame that starts where the previous one (passed through
@@ -135,6 +141,8 @@ class _Pending:
 
 
 def _with_plane(p: Vec6, plane: Plane, q: Pt) -> Vec6:
+    if plane is Plane.XY:
+        return (q[0], q[1], p[2], p[3], p[4], p[5])
     out = list(p)
     out[plane.first], out[plane.second] = q
     return (out[0], out[1], out[2], out[3], out[4], out[5])

@@ -72,7 +72,7 @@ from cncc.ir.batch import Item, MoveBatch, expand
 
 __all__ = ["AXES", "EmitOptions", "GcodeEmitter", "emit_gcode"]
 
-_ARC_LETTERS = {Plane.XY: ("I", "J"), Plane.ZX: ("K", "I"), Plane.YZ: ("J", "K")}
+ARC_LETTERS = {Plane.XY: ("I", "J"), Plane.ZX: ("K", "I"), Plane.YZ: ("J", "K")}
 _SPINDLE_OPS = {SpindleState.CW: "spindle_cw", SpindleState.CCW: "spindle_ccw", SpindleState.OFF: "spindle_off",
                 SpindleState.ORIENT: "spindle_orient"}
 _COOLANT_OPS = {CoolantState.FLOOD: "coolant_flood", CoolantState.MIST: "coolant_mist",
@@ -247,7 +247,7 @@ class GcodeEmitter(ModeWriter):
         d1, d2 = offsets
         if form.single_quadrant:
             d1, d2 = abs(d1), abs(d2)
-        l1, l2 = _ARC_LETTERS[plane]
+        l1, l2 = ARC_LETTERS[plane]
         return [f"{l1}{self.text(d1)}", f"{l2}{self.text(d2)}"]
 
     # ---- canned cycles -----------------------------------------------------------------------
