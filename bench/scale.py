@@ -41,7 +41,10 @@ def run_cncc(path: Path, args: list[str], limit_s: float, root: Path = ROOT) -> 
     with tempfile.TemporaryFile() as err:
         # a session of its own: at the time limit the whole group goes (killing /usr/bin/time
         # alone left cncc running as an orphan)
-        proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=err, env=env, start_new_session=True)
+        # cwd=root: 'python -m cncc' puts the cwd first on sys.path (a before run started from a
+        # worktree would import the worktree)
+        proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=err, env=env, start_new_session=True,
+                                cwd=str(root))
         start = time.monotonic()
         killed = False
         while True:
