@@ -17,7 +17,7 @@ events; :mod:`cncc.backends.timing.events` gives their times.
 from __future__ import annotations
 
 import math
-from collections.abc import Iterable, Sequence
+from collections.abc import Iterable, Iterator, Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
@@ -38,6 +38,9 @@ if TYPE_CHECKING:
 ARC_CHORD_MAX_RAD = math.radians(10.0)
 """Nominal trajectories draw arcs as chords of at most this sweep (for plots only:
 the time is the helical length / feed either way)."""
+
+ARCS_PER_CHUNK = 4096
+"""Arcs chorded per numpy step in :func:`nominal_trajectory` (bounds its temporaries)."""
 
 
 @dataclass(slots=True)
@@ -255,34 +258,45 @@ class _ArcRows:
         self.scal.append((r0, r1, a0, sweep, total_s / n))
         self.chords.append(n)
 
-    def arrays(self) -> tuple[F64, F64, F64, I64]:
-        """(durations, start points, velocities, command indices) of the chords, in order."""
+    def chord_counts(self) -> I64:
         import numpy as np
 
-        n = np.asarray(self.chords, dtype=np.int64)
-        arc = np.repeat(np.arange(len(n)), n)  # the arc of every chord
-        first = np.concatenate(([0], np.cumsum(n)[:-1]))
-        k = np.arange(len(arc)) - first[arc] + 1  # 1..n within each arc
-        u = k.astype(np.float64) / n[arc].astype(np.float64)
-        s0 = np.asarray(self.start, dtype=np.float64)[arc]
-        e0 = np.asarray(self.end, dtype=np.float64)[arc]
-        cen = np.asarray(self.center, dtype=np.float64)[arc]
-        sc = np.asarray(self.scal, dtype=np.float64)[arc]
-        r0, r1, a0, sweep, dur = sc[:, 0], sc[:, 1], sc[:, 2], sc[:, 3], sc[:, 4]
-        r, a = r0 + (r1 - r0) * u, a0 + sweep * u
-        pts = s0 + (e0 - s0) * u[:, None]
-        plane = np.asarray(self.plane, dtype=np.int64)[arc]
-        rows = np.arange(len(arc))
-        al = a.tolist()
-        pts[rows, plane[:, 0]] = cen[rows, plane[:, 0]] + r * np.fromiter(map(math.cos, al), np.float64, len(al))
-        pts[rows, plane[:, 1]] = cen[rows, plane[:, 1]] + r * np.fromiter(map(math.sin, al), np.float64, len(al))
-        last = first + n - 1
-        pts[last] = e0[last]  # the last chord ends on the arc's end point exactly
-        p0 = np.empty_like(pts)
-        p0[1:] = pts[:-1]
-        p0[first] = s0[first]  # the first chord starts on the arc's start point
-        v = (pts - p0) / dur[:, None]
-        return dur, p0, v, np.asarray(self.cmd, dtype=np.int64)[arc]
+        return np.asarray(self.chords, dtype=np.int64)
+
+    def chunks(self, arcs_per_chunk: int = 0) -> Iterator[tuple[int, F64, F64, F64]]:
+        """(first chord row, durations, start points, velocities) of the chords of
+        ``arcs_per_chunk`` arcs at a time, in order (bounded temporaries: 100k helices are
+        3.4 M chords)."""
+        import numpy as np
+
+        arcs_per_chunk = arcs_per_chunk or ARCS_PER_CHUNK
+        n_all = self.chord_counts()
+        first_all = np.concatenate(([0], np.cumsum(n_all)[:-1]))
+        for lo in range(0, len(n_all), arcs_per_chunk):
+            hi = min(len(n_all), lo + arcs_per_chunk)
+            n = n_all[lo:hi]
+            arc = np.repeat(np.arange(hi - lo), n)  # the arc of every chord (within the chunk)
+            first = np.concatenate(([0], np.cumsum(n)[:-1]))
+            k = np.arange(len(arc)) - first[arc] + 1  # 1..n within each arc
+            u = k.astype(np.float64) / n[arc].astype(np.float64)
+            s0 = np.asarray(self.start[lo:hi], dtype=np.float64)[arc]
+            e0 = np.asarray(self.end[lo:hi], dtype=np.float64)[arc]
+            cen = np.asarray(self.center[lo:hi], dtype=np.float64)[arc]
+            sc = np.asarray(self.scal[lo:hi], dtype=np.float64)[arc]
+            r0, r1, a0, sweep, dur = sc[:, 0], sc[:, 1], sc[:, 2], sc[:, 3], sc[:, 4]
+            r, a = r0 + (r1 - r0) * u, a0 + sweep * u
+            pts = s0 + (e0 - s0) * u[:, None]
+            plane = np.asarray(self.plane[lo:hi], dtype=np.int64)[arc]
+            rows = np.arange(len(arc))
+            al = a.tolist()
+            pts[rows, plane[:, 0]] = cen[rows, plane[:, 0]] + r * np.fromiter(map(math.cos, al), np.float64, len(al))
+            pts[rows, plane[:, 1]] = cen[rows, plane[:, 1]] + r * np.fromiter(map(math.sin, al), np.float64, len(al))
+            last = first + n - 1
+            pts[last] = e0[last]  # the last chord ends on the arc's end point exactly
+            p0 = np.empty_like(pts)
+            p0[1:] = pts[:-1]
+            p0[first] = s0[first]  # the first chord starts on the arc's start point
+            yield int(first_all[lo]), dur, p0, (pts - p0) / dur[:, None]
 
 
 def nominal_trajectory(cmds: Sequence[Command], machine: MachineModel) -> Trajectory:
@@ -311,22 +325,31 @@ def nominal_trajectory(cmds: Sequence[Command], machine: MachineModel) -> Trajec
     if not rows.dur_s and not arcs.cmd:
         return Trajectory.empty(AXES)
     width = len(AXES)
-    dur = np.asarray(rows.dur_s, dtype=np.float64)
-    p0 = np.asarray(rows.p0_mm, dtype=np.float64).reshape(-1, width)
-    v = np.asarray(rows.v_mm_s, dtype=np.float64).reshape(-1, width)
-    cmd = np.asarray(rows.cmd, dtype=np.int64)
-    limit = np.asarray(rows.limit, dtype=np.int8)
+    n_lin = len(rows.dur_s)
+    arc_cmd = np.repeat(np.asarray(arcs.cmd, dtype=np.int64), arcs.chord_counts())
+    order = np.argsort(np.concatenate((np.asarray(rows.cmd, dtype=np.int64), arc_cmd)), kind="stable")
+    total = len(order)  # one command is an arc or not: the stable sort keeps each command's rows in order
+    dest = np.empty(total, dtype=np.int64)
+    dest[order] = np.arange(total)  # where every row (the other moves', then the chords) goes
+    dur, p0, v = np.empty(total), np.empty((total, width)), np.empty((total, width))
+    cmd, limit = np.empty(total, dtype=np.int64), np.empty(total, dtype=np.int8)
+    if n_lin:
+        at = dest[:n_lin]
+        dur[at] = rows.dur_s
+        p0[at] = np.asarray(rows.p0_mm, dtype=np.float64).reshape(-1, width)
+        v[at] = np.asarray(rows.v_mm_s, dtype=np.float64).reshape(-1, width)
+        cmd[at] = rows.cmd
+        limit[at] = rows.limit
     if arcs.cmd:
-        a_dur, a_p0, a_v, a_cmd = arcs.arrays()
-        order = np.argsort(np.concatenate((cmd, a_cmd)), kind="stable")  # one command is an arc or not
-        dur = np.concatenate((dur, a_dur))[order]
-        p0 = np.concatenate((p0, a_p0))[order]
-        v = np.concatenate((v, a_v))[order]
-        limit = np.concatenate((limit, np.full(len(a_dur), int(Limit.FEED), dtype=np.int8)))[order]
-        cmd = np.concatenate((cmd, a_cmd))[order]
+        at = dest[n_lin:]
+        cmd[at] = arc_cmd
+        limit[at] = int(Limit.FEED)
+        for lo, c_dur, c_p0, c_v in arcs.chunks():
+            part = at[lo:lo + len(c_dur)]
+            dur[part], p0[part], v[part] = c_dur, c_p0, c_v
     t0 = np.concatenate(([0.0], np.cumsum(dur)[:-1]))
-    zeros = np.zeros((len(dur), width))
-    return Trajectory(t0, dur, p0, v, zeros, zeros.copy(), cmd, limit, AXES)
+    # the acceleration and jerk rows are zero: two untouched zero arrays (pages the OS maps on write)
+    return Trajectory(t0, dur, p0, v, np.zeros((total, width)), np.zeros((total, width)), cmd, limit, AXES)
 
 
 # ---- batches of moves -------------------------------------------------------------------

@@ -7,7 +7,9 @@ import random
 from collections.abc import Sequence
 
 import numpy as np
+import pytest
 
+from cncc.backends import nominal
 from cncc.backends.nominal import nominal_timing, nominal_trajectory
 from cncc.ir import IDENTITY_FRAME, Arc, Command, Dwell, Linear, Plane, Rapid
 from cncc.ir.machine import Axis, MachineModel, RapidMode
@@ -123,10 +125,12 @@ def _scalar_nominal(cmds: list[Command], m: MachineModel) -> tuple[list[float], 
     return dur, p0, vel, idx
 
 
-def test_numpy_chords_are_the_scalar_chords_bit_for_bit() -> None:
+@pytest.mark.parametrize("per_chunk", [4096, 7, 1])
+def test_numpy_chords_are_the_scalar_chords_bit_for_bit(per_chunk: int, monkeypatch: pytest.MonkeyPatch) -> None:
     """Arcs in all three planes, helices of several turns, both directions, radius changes
     (an end off the start's circle), zero-feed arcs, between lines: the phases are exactly
     the per-chord formula's, in command order."""
+    monkeypatch.setattr(nominal, "ARCS_PER_CHUNK", per_chunk)  # chunks of arcs, cut anywhere
     rng = random.Random(14)
     cmds: list[Command] = []
     p = [0.0, 0.0, 0.0]
