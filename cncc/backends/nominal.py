@@ -17,7 +17,7 @@ events; :mod:`cncc.backends.timing.events` gives their times.
 from __future__ import annotations
 
 import math
-from collections.abc import Iterable, Sequence
+from collections.abc import Iterable, Iterator, Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
@@ -38,6 +38,9 @@ if TYPE_CHECKING:
 ARC_CHORD_MAX_RAD = math.radians(10.0)
 """Nominal trajectories draw arcs as chords of at most this sweep (for plots only:
 the time is the helical length / feed either way)."""
+
+ARCS_PER_CHUNK = 4096
+"""Arcs chorded per numpy step in :func:`nominal_trajectory` (bounds its temporaries)."""
 
 
 @dataclass(slots=True)
@@ -218,28 +221,82 @@ def independent_rapid_phases_s(start: Sequence[float], end: Sequence[float], mac
     return out
 
 
-def _arc_point(c: Arc, u: float, sweep: float) -> list[float]:
-    i, j, n = c.plane.first, c.plane.second, c.plane.normal
-    r0 = math.hypot(c.start[i] - c.center[i], c.start[j] - c.center[j])
-    r1 = math.hypot(c.end[i] - c.center[i], c.end[j] - c.center[j])
-    a0 = math.atan2(c.start[j] - c.center[j], c.start[i] - c.center[i])
-    r, a = r0 + (r1 - r0) * u, a0 + sweep * u
-    p = [s + (e - s) * u for s, e in zip(c.start, c.end, strict=True)]
-    p[i] = c.center[i] + r * math.cos(a)
-    p[j] = c.center[j] + r * math.sin(a)
-    p[n] = c.start[n] + (c.end[n] - c.start[n]) * u
-    return p
+@dataclass(slots=True)
+class _ArcRows:
+    """The arcs of a nominal trajectory, chorded at the end in numpy (one row per chord).
 
+    Per arc only its scalars are computed in Python (sweep, radii, start angle, time); the
+    chord points are the same float operations per element as the per-chord formula
+    ``r = r0 + (r1 - r0) u``, ``a = a0 + sweep u``, ``p = s + (e - s) u`` with ``u = k / n``
+    (numpy element-wise, no fused operations) and ``math.cos`` / ``math.sin`` of every angle
+    (numpy's may differ in the last bit), so the rows are bit for bit the scalar code's.
+    """
 
-def _arc_rows(rows: _Rows, c: Arc, i: int, limit: int) -> None:
-    total_s = feed_time_s(arc_length_mm(c), c.feed_mm_min)
-    sweep = arc_sweep_rad(c)
-    n = arc_chords(sweep)
-    prev: Sequence[float] = c.start
-    for k in range(1, n + 1):
-        nxt = c.end if k == n else _arc_point(c, k / n, sweep)
-        rows.add(total_s / n, prev, nxt, i, limit)
-        prev = nxt
+    cmd: list[int] = field(default_factory=list)
+    start: list[Sequence[float]] = field(default_factory=list)
+    end: list[Sequence[float]] = field(default_factory=list)
+    center: list[Sequence[float]] = field(default_factory=list)
+    plane: list[tuple[int, int]] = field(default_factory=list)
+    scal: list[tuple[float, float, float, float, float]] = field(default_factory=list)  # r0, r1, a0, sweep, dur
+    chords: list[int] = field(default_factory=list)
+
+    def add(self, c: Arc, i: int) -> None:
+        total_s = feed_time_s(arc_length_mm(c), c.feed_mm_min)
+        sweep = arc_sweep_rad(c)
+        n = arc_chords(sweep)
+        if total_s / n <= 0.0:  # _Rows.add drops phases without time
+            return
+        pi, pj = c.plane.first, c.plane.second
+        self.cmd.append(i)
+        self.start.append(c.start)
+        self.end.append(c.end)
+        self.center.append(c.center)
+        self.plane.append((pi, pj))
+        r0 = math.hypot(c.start[pi] - c.center[pi], c.start[pj] - c.center[pj])
+        r1 = math.hypot(c.end[pi] - c.center[pi], c.end[pj] - c.center[pj])
+        a0 = math.atan2(c.start[pj] - c.center[pj], c.start[pi] - c.center[pi])
+        self.scal.append((r0, r1, a0, sweep, total_s / n))
+        self.chords.append(n)
+
+    def chord_counts(self) -> I64:
+        import numpy as np
+
+        return np.asarray(self.chords, dtype=np.int64)
+
+    def chunks(self, arcs_per_chunk: int = 0) -> Iterator[tuple[int, F64, F64, F64]]:
+        """(first chord row, durations, start points, velocities) of the chords of
+        ``arcs_per_chunk`` arcs at a time, in order (bounded temporaries: 100k helices are
+        3.4 M chords)."""
+        import numpy as np
+
+        arcs_per_chunk = arcs_per_chunk or ARCS_PER_CHUNK
+        n_all = self.chord_counts()
+        first_all = np.concatenate(([0], np.cumsum(n_all)[:-1]))
+        for lo in range(0, len(n_all), arcs_per_chunk):
+            hi = min(len(n_all), lo + arcs_per_chunk)
+            n = n_all[lo:hi]
+            arc = np.repeat(np.arange(hi - lo), n)  # the arc of every chord (within the chunk)
+            first = np.concatenate(([0], np.cumsum(n)[:-1]))
+            k = np.arange(len(arc)) - first[arc] + 1  # 1..n within each arc
+            u = k.astype(np.float64) / n[arc].astype(np.float64)
+            s0 = np.asarray(self.start[lo:hi], dtype=np.float64)[arc]
+            e0 = np.asarray(self.end[lo:hi], dtype=np.float64)[arc]
+            cen = np.asarray(self.center[lo:hi], dtype=np.float64)[arc]
+            sc = np.asarray(self.scal[lo:hi], dtype=np.float64)[arc]
+            r0, r1, a0, sweep, dur = sc[:, 0], sc[:, 1], sc[:, 2], sc[:, 3], sc[:, 4]
+            r, a = r0 + (r1 - r0) * u, a0 + sweep * u
+            pts = s0 + (e0 - s0) * u[:, None]
+            plane = np.asarray(self.plane[lo:hi], dtype=np.int64)[arc]
+            rows = np.arange(len(arc))
+            al = a.tolist()
+            pts[rows, plane[:, 0]] = cen[rows, plane[:, 0]] + r * np.fromiter(map(math.cos, al), np.float64, len(al))
+            pts[rows, plane[:, 1]] = cen[rows, plane[:, 1]] + r * np.fromiter(map(math.sin, al), np.float64, len(al))
+            last = first + n - 1
+            pts[last] = e0[last]  # the last chord ends on the arc's end point exactly
+            p0 = np.empty_like(pts)
+            p0[1:] = pts[:-1]
+            p0[first] = s0[first]  # the first chord starts on the arc's start point
+            yield int(first_all[lo]), dur, p0, (pts - p0) / dur[:, None]
 
 
 def nominal_trajectory(cmds: Sequence[Command], machine: MachineModel) -> Trajectory:
@@ -248,7 +305,7 @@ def nominal_trajectory(cmds: Sequence[Command], machine: MachineModel) -> Trajec
     One phase per rapid (interpolated) or per axis arrival (independent), one per
     linear move, one per chord of an arc.  ``cmd_index`` indexes ``cmds``; the limit
     is ``RAPID`` for rapids and ``FEED`` for feed moves.  Non-motion commands get no
-    phase.
+    phase.  Arcs are chorded in numpy (:class:`_ArcRows`), then merged in command order.
     """
     import numpy as np
 
@@ -256,6 +313,7 @@ def nominal_trajectory(cmds: Sequence[Command], machine: MachineModel) -> Trajec
     from cncc.ir.trajectory import Limit, Trajectory
 
     rows = _Rows()
+    arcs = _ArcRows()
     for i, c in enumerate(cmds):
         match c:
             case Rapid():
@@ -263,15 +321,35 @@ def nominal_trajectory(cmds: Sequence[Command], machine: MachineModel) -> Trajec
             case Linear():
                 rows.add(linear_time_s(c), c.start, c.end, i, int(Limit.FEED))
             case Arc():
-                _arc_rows(rows, c, i, int(Limit.FEED))
-    if not rows.dur_s:
+                arcs.add(c, i)
+    if not rows.dur_s and not arcs.cmd:
         return Trajectory.empty(AXES)
-    dur = np.asarray(rows.dur_s, dtype=np.float64)
+    width = len(AXES)
+    n_lin = len(rows.dur_s)
+    arc_cmd = np.repeat(np.asarray(arcs.cmd, dtype=np.int64), arcs.chord_counts())
+    order = np.argsort(np.concatenate((np.asarray(rows.cmd, dtype=np.int64), arc_cmd)), kind="stable")
+    total = len(order)  # one command is an arc or not: the stable sort keeps each command's rows in order
+    dest = np.empty(total, dtype=np.int64)
+    dest[order] = np.arange(total)  # where every row (the other moves', then the chords) goes
+    dur, p0, v = np.empty(total), np.empty((total, width)), np.empty((total, width))
+    cmd, limit = np.empty(total, dtype=np.int64), np.empty(total, dtype=np.int8)
+    if n_lin:
+        at = dest[:n_lin]
+        dur[at] = rows.dur_s
+        p0[at] = np.asarray(rows.p0_mm, dtype=np.float64).reshape(-1, width)
+        v[at] = np.asarray(rows.v_mm_s, dtype=np.float64).reshape(-1, width)
+        cmd[at] = rows.cmd
+        limit[at] = rows.limit
+    if arcs.cmd:
+        at = dest[n_lin:]
+        cmd[at] = arc_cmd
+        limit[at] = int(Limit.FEED)
+        for lo, c_dur, c_p0, c_v in arcs.chunks():
+            part = at[lo:lo + len(c_dur)]
+            dur[part], p0[part], v[part] = c_dur, c_p0, c_v
     t0 = np.concatenate(([0.0], np.cumsum(dur)[:-1]))
-    zeros = np.zeros((len(dur), len(AXES)))
-    return Trajectory(t0, dur, np.asarray(rows.p0_mm, dtype=np.float64), np.asarray(rows.v_mm_s, dtype=np.float64),
-                      zeros, zeros.copy(), np.asarray(rows.cmd, dtype=np.int64),
-                      np.asarray(rows.limit, dtype=np.int8), AXES)
+    # the acceleration and jerk rows are zero: two untouched zero arrays (pages the OS maps on write)
+    return Trajectory(t0, dur, p0, v, np.zeros((total, width)), np.zeros((total, width)), cmd, limit, AXES)
 
 
 # ---- batches of moves -------------------------------------------------------------------

@@ -128,7 +128,7 @@ def _smeared_chunk(traj: Trajectory, t_b: FloatArray, jmax_mm_s3: FloatArray, pe
     return bad
 
 
-def dense_extremes(traj: Trajectory, per_phase: int = 16, chunk_phases: int = 8192,
+def dense_extremes(traj: Trajectory, per_phase: int = 16, chunk_phases: int = 1024,
                    phases: npt.NDArray[np.intp] | None = None) -> tuple[FloatArray, FloatArray, FloatArray]:
     """``(n, m)`` maxima of ``|v|``, ``|a|``, ``|j|`` over ``per_phase + 1`` samples of each phase
     (both ends by their one-sided limits), ``chunk_phases`` phases at a time (bounded memory).
