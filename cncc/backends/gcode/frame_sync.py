@@ -159,7 +159,11 @@ class FrameSync(BlockWriter):
             out.append(self.block([self.t.code("local_offset"), *self._vector_words(local_want)]))
             tf.local_mm = local_want
         if (f.tool_length_mm, f.tool_length_index) != (tf.tool_mm, tf.tool_index):
-            out += self._tool_length(f)
+            axis_before = tf.tool_axis
+            length = self._tool_length(f)
+            if length:  # the next move names the tool axis (see ``restate``): E0208 on read-back without it
+                self.restate |= {axis_before, f.tool_length_axis}
+            out += length
         if (g92_want != tf.g92_mm or self.g92_force) and g92:
             machine = add(start, add(f.total_offset_mm, _tool(f)))
             old = tf.g92_mm

@@ -86,6 +86,10 @@ class BlockWriter:
         self.sync_poison = False  # blocks setting units and offsets have none either
         self.in_alt = False
         self.all_axes = False  # the next move writes X, Y and Z (the first move of a call)
+        # axes the next move writes even when their written value does not change: the tool axis after a
+        # tool length block (LinuxCNC and grbl shift the program position by the offset change at once, a
+        # Fanuc-like target applies it with the next move; the written word means the same on both)
+        self.restate: set[int] = set()
         self.rotation: Rotation | None = None  # the G68 record the output has in force
         self.mirror: Mirror | None = None  # the G51.1 record the output has in force
         self.scaling: Scaling | None = None  # the G51 record the output has in force
@@ -205,8 +209,10 @@ class BlockWriter:
         """Words for the axes whose written value changes (the first plane axis for a null move)."""
         qpos = self._start_at(start)
         q = self._at(end)
-        changed = [i for i in range(6) if q[i] != qpos[i] or i in always or (self.all_axes and i < 3)]
+        changed = [i for i in range(6) if q[i] != qpos[i] or i in always or i in self.restate
+                   or (self.all_axes and i < 3)]
         self.all_axes = False
+        self.restate = set()
         if not changed:  # a null move writes one word: of an axis whose position the output knows
             p = self.plane
             known = [i for i in (p.first, p.second, p.normal) if i not in self.unknown]
