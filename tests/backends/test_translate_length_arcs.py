@@ -91,3 +91,14 @@ def test_the_arc_after_g49_names_z() -> None:
     if rs274_path() is not None:
         r = run_rs274(out.output, RS274_TOOLS)
         assert r.ok, (r.error, out.output)
+
+
+def test_a_flat_arc_after_g49_keeps_its_feed_in_a_fanuc_translation() -> None:
+    """LinuxCNC G49 shifts the program Z at once, so its next XY arc with no Z word is flat on the machine
+    (Z stays where the tool is).  The Fanuc translation names Z (that same machine Z, now with no offset)
+    and, the arc being flat, keeps F: before, the writer took the offset change for a 50 mm rise and
+    wrote the projection feed of that helix (F29.972 for F100)."""
+    text = "G17 G21 G90\nG0 X0. Y0.\nG43 H1 Z5.\nG1 Z2. F100.\nG49\nG2 X10. Y0. I5. J0.\nM30\n"
+    out = compile_text(text, dialect="linuxcnc", emit="gcode", target="fanuc", tools_file=str(TOOLS))
+    arc = next(line for line in out.output.splitlines() if line.startswith("G02 X10."))
+    assert " Z52." in arc and " F" not in arc, out.output  # 2 + 50 (H1): the tool did not move in Z

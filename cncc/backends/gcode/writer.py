@@ -13,7 +13,7 @@ from collections.abc import Callable, Iterable, Iterator
 from dataclasses import dataclass
 
 from cncc import diagnostics as dg
-from cncc.backends.gcode.frames import TargetFrame
+from cncc.backends.gcode.frames import TargetFrame, add
 from cncc.backends.gcode.numbers import counts_text, fixed, quantize
 from cncc.backends.gcode.target import Target, make_target
 from cncc.diagnostics import DiagnosticSink
@@ -90,6 +90,7 @@ class BlockWriter:
         # tool length block (LinuxCNC and grbl shift the program position by the offset change at once, a
         # Fanuc-like target applies it with the next move; the written word means the same on both)
         self.restate: set[int] = set()
+        self.start_shift_mm: Vec6 | None = None  # added to the next move's start (a tool length change)
         self.rotation: Rotation | None = None  # the G68 record the output has in force
         self.mirror: Mirror | None = None  # the G51.1 record the output has in force
         self.scaling: Scaling | None = None  # the G51 record the output has in force
@@ -194,6 +195,8 @@ class BlockWriter:
         """
         if self.qpos is None:
             fold = self.fold or (0.0,) * 6
+            if self.start_shift_mm is not None:  # the target's position after a tool length block
+                start, self.start_shift_mm = add(start, self.start_shift_mm), None
             self.qpos = self._at(start)
             was = self.written_mm
             self.written_mm = None
