@@ -36,6 +36,7 @@ from cncc.ir.commands import (
     ToolChange,
     Wait,
     cycle_kind,
+    with_ends,
 )
 from cncc.ir.frame import AXES, IDENTITY_FRAME, ZERO6, CompSide, Frame, Plane, Units, Vec6
 from cncc.ir.legacy import SetMode, set_mode  # deprecated: typed mode commands instead
@@ -159,4 +160,5 @@ __all__ = [
     "WriteWorkTable",
     "cycle_kind",
     "set_mode",
+    "with_ends",
 ]

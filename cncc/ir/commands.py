@@ -117,6 +117,18 @@ class Arc:
     origin: Origin = PROGRAMMED
 
 
+def with_ends(c: Rapid | Linear | Arc, frame: Frame, start: Vec6, end: Vec6,
+              center: Vec6 | None = None) -> Rapid | Linear | Arc:
+    """The same motion (its kind, feed, path mode and origin; an arc's turns and plane) in ``frame``
+    from ``start`` to ``end``; an arc turns about ``center``, else about its own centre."""
+    if isinstance(c, Rapid):
+        return Rapid(c.span, frame, start, end, c.motion, c.origin)
+    if isinstance(c, Linear):
+        return Linear(c.span, frame, start, end, c.feed_mm_min, c.motion, c.origin)
+    return Arc(c.span, frame, start, end, c.center if center is None else center, c.turns, c.plane, c.feed_mm_min,
+               c.motion, c.origin)
+
+
 @dataclass(frozen=True, slots=True)
 class Dwell:
     span: Span

@@ -41,7 +41,7 @@ from typing import ClassVar
 
 from cncc import diagnostics as dg
 from cncc.diagnostics import Related
-from cncc.ir import ZERO6, Arc, Command, CompSide, Cycle, Frame, Linear, OriginKind, Plane, Rapid, Vec6
+from cncc.ir import ZERO6, Arc, Command, CompSide, Cycle, Frame, Linear, OriginKind, Plane, Rapid, Vec6, with_ends
 from cncc.ir.batch import Item, MoveBatch, expand, rebatch
 from cncc.ir.frame import add_offsets, sub_offsets
 from cncc.passes import Pass, PassContext, register
@@ -239,14 +239,7 @@ class _Comp:
         if plane_end is not None and plane is not None:
             end = sub_offsets(_with_plane(add_offsets(c.end, c.frame), plane, plane_end), c.frame)
         self.last = add_offsets(end, nf)
-        if start == c.start and end == c.end and nf is c.frame:
-            yield c
-        elif isinstance(c, Rapid):
-            yield Rapid(c.span, nf, start, end, c.motion, c.origin)
-        elif isinstance(c, Linear):
-            yield Linear(c.span, nf, start, end, c.feed_mm_min, c.motion, c.origin)
-        else:
-            yield Arc(c.span, nf, start, end, c.center, c.turns, c.plane, c.feed_mm_min, c.motion, c.origin)
+        yield c if start == c.start and end == c.end and nf is c.frame else with_ends(c, nf, start, end)
 
     def _make(self, c: Motion) -> Element:
         f = c.frame

@@ -18,7 +18,7 @@ from collections.abc import Iterable, Iterator
 from dataclasses import dataclass, field
 from typing import ClassVar, Protocol
 
-from cncc.ir import Arc, Command, Linear, Rapid
+from cncc.ir import Arc, Command, Linear, Rapid, with_ends
 from cncc.passes import Pass, PassContext, register
 
 
@@ -47,13 +47,7 @@ class Relink(Pass):
                 start = (last[0] - o[0], last[1] - o[1], last[2] - o[2], last[3] - o[3], last[4] - o[4],
                          last[5] - o[5])
                 if start != c.start:
-                    if isinstance(c, Rapid):
-                        c = Rapid(c.span, f, start, c.end, c.motion, c.origin)
-                    elif isinstance(c, Linear):
-                        c = Linear(c.span, f, start, c.end, c.feed_mm_min, c.motion, c.origin)
-                    else:
-                        c = Arc(c.span, f, start, c.end, c.center, c.turns, c.plane, c.feed_mm_min, c.motion,
-                                c.origin)
+                    c = with_ends(c, f, start, c.end)
             o = f.total_offset_mm
             e = c.end
             last = (e[0] + o[0], e[1] + o[1], e[2] + o[2], e[3] + o[3], e[4] + o[4], e[5] + o[5])

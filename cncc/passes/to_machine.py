@@ -14,7 +14,7 @@ from collections.abc import Iterable, Iterator
 from dataclasses import dataclass, replace
 from typing import ClassVar
 
-from cncc.ir import ZERO6, Arc, Command, Frame, Linear, Rapid, Vec6
+from cncc.ir import ZERO6, Arc, Command, Frame, Linear, Rapid, Vec6, with_ends
 from cncc.ir.batch import Item, MoveBatch, expand
 from cncc.passes import Pass, PassContext, register
 
@@ -52,10 +52,6 @@ class ToMachine(Pass):
                     yield c.with_(frame=nf, start0=_add(c.start0, o), end=c.end + o, center=c.center + o)
             elif nf is f or not isinstance(c, Rapid | Linear | Arc):
                 yield c if nf is f else replace(c, frame=nf)
-            elif isinstance(c, Rapid):
-                yield Rapid(c.span, nf, _add(c.start, o), _add(c.end, o), c.motion, c.origin)
-            elif isinstance(c, Linear):
-                yield Linear(c.span, nf, _add(c.start, o), _add(c.end, o), c.feed_mm_min, c.motion, c.origin)
             else:
-                yield Arc(c.span, nf, _add(c.start, o), _add(c.end, o), _add(c.center, o), c.turns, c.plane,
-                          c.feed_mm_min, c.motion, c.origin)
+                center = _add(c.center, o) if isinstance(c, Arc) else None
+                yield with_ends(c, nf, _add(c.start, o), _add(c.end, o), center)

@@ -13,7 +13,7 @@ from collections.abc import Iterable, Iterator
 from dataclasses import dataclass, replace
 from typing import ClassVar
 
-from cncc.ir import ZERO6, Arc, Command, Frame, Linear, Rapid, Vec6
+from cncc.ir import ZERO6, Arc, Command, Frame, Linear, Rapid, Vec6, with_ends
 from cncc.ir.batch import Item, MoveBatch, expand
 from cncc.ir.frame import add_offsets
 from cncc.passes import Pass, PassContext, register
@@ -71,13 +71,8 @@ class ToolLength(Pass):
                 last = add_offsets(end, f)
                 if nf is f and start == c.start and end == c.end:
                     yield c
-                elif isinstance(c, Rapid):
-                    yield Rapid(c.span, nf, start, end, c.motion, c.origin)
-                elif isinstance(c, Linear):
-                    yield Linear(c.span, nf, start, end, c.feed_mm_min, c.motion, c.origin)
                 else:
-                    yield Arc(c.span, nf, start, end, _shift(c.center, axis, d), c.turns, c.plane, c.feed_mm_min,
-                              c.motion, c.origin)
+                    yield with_ends(c, nf, start, end, _shift(c.center, axis, d) if isinstance(c, Arc) else None)
 
 
 def _batch(b: MoveBatch, nf: Frame, last: Vec6 | None) -> MoveBatch | None:

@@ -95,6 +95,7 @@ def _plain(em: GcodeEmitter, b: MoveBatch) -> bool:
     f = b.frame
     return (em.probe is None and not em.call_depth and not em.in_alt and not em.opt.line_numbers
             and not em.g91_block and em.qpos is not None and not f.incremental and not em.all_axes
+            and not em.restate
             and em.cycle_initial is None and em.held == f.held_axes and _synced(em, f))
 
 

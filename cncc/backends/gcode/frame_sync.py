@@ -159,7 +159,17 @@ class FrameSync(BlockWriter):
             out.append(self.block([self.t.code("local_offset"), *self._vector_words(local_want)]))
             tf.local_mm = local_want
         if (f.tool_length_mm, f.tool_length_index) != (tf.tool_mm, tf.tool_index):
-            out += self._tool_length(f)
+            axis_before, length_before = tf.tool_axis, tf.tool_mm
+            length = self._tool_length(f)
+            if length:  # the next move names the tool axis (see ``restate``): E0208 on read-back without it
+                self.restate |= {axis_before, tf.tool_axis}
+                # where the tool is, in the target's terms once the block ran: the command's start is the
+                # position before the change (the source applies the change with the move)
+                shift = [0.0] * 6
+                shift[axis_before] += length_before
+                shift[tf.tool_axis] -= tf.tool_mm
+                self.start_shift_mm = (shift[0], shift[1], shift[2], shift[3], shift[4], shift[5])
+            out += length
         if (g92_want != tf.g92_mm or self.g92_force) and g92:
             machine = add(start, add(f.total_offset_mm, _tool(f)))
             old = tf.g92_mm

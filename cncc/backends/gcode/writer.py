@@ -13,7 +13,7 @@ from collections.abc import Callable, Iterable, Iterator
 from dataclasses import dataclass
 
 from cncc import diagnostics as dg
-from cncc.backends.gcode.frames import TargetFrame
+from cncc.backends.gcode.frames import TargetFrame, add
 from cncc.backends.gcode.numbers import counts_text, fixed, quantize
 from cncc.backends.gcode.target import Target, make_target
 from cncc.diagnostics import DiagnosticSink
@@ -86,6 +86,11 @@ class BlockWriter:
         self.sync_poison = False  # blocks setting units and offsets have none either
         self.in_alt = False
         self.all_axes = False  # the next move writes X, Y and Z (the first move of a call)
+        # axes the next move writes even when their written value does not change: the tool axis after a
+        # tool length block (LinuxCNC and grbl shift the program position by the offset change at once, a
+        # Fanuc-like target applies it with the next move; the written word means the same on both)
+        self.restate: set[int] = set()
+        self.start_shift_mm: Vec6 | None = None  # added to the next move's start (a tool length change)
         self.rotation: Rotation | None = None  # the G68 record the output has in force
         self.mirror: Mirror | None = None  # the G51.1 record the output has in force
         self.scaling: Scaling | None = None  # the G51 record the output has in force
@@ -190,6 +195,8 @@ class BlockWriter:
         """
         if self.qpos is None:
             fold = self.fold or (0.0,) * 6
+            if self.start_shift_mm is not None:  # the target's position after a tool length block
+                start, self.start_shift_mm = add(start, self.start_shift_mm), None
             self.qpos = self._at(start)
             was = self.written_mm
             self.written_mm = None
@@ -205,8 +212,10 @@ class BlockWriter:
         """Words for the axes whose written value changes (the first plane axis for a null move)."""
         qpos = self._start_at(start)
         q = self._at(end)
-        changed = [i for i in range(6) if q[i] != qpos[i] or i in always or (self.all_axes and i < 3)]
+        changed = [i for i in range(6) if q[i] != qpos[i] or i in always or i in self.restate
+                   or (self.all_axes and i < 3)]
         self.all_axes = False
+        self.restate = set()
         if not changed:  # a null move writes one word: of an axis whose position the output knows
             p = self.plane
             known = [i for i in (p.first, p.second, p.normal) if i not in self.unknown]
