@@ -73,3 +73,23 @@ def test_a_zero_g44_stays_g44() -> None:
     text = "G90 G00 X0 Y0 Z50.\nG44 Z20. H02\nG01 X5. F100\nG49 G00 Z50.\nM30\n"
     r = compile_text(text, dialect="syntec", emit="gcode", target="fanuc")
     assert length_blocks(r.output) == ["G44 H2", "G49"], r.output
+
+
+# Found by tests/pipeline/test_unmoved_axes.py: G43 on a block whose Z is the one written last.  A
+# target without G43 (series8 here) gets the length folded into Z, and the tool goes up by it; the
+# block wrote nothing for Z ("G00 Y0."), so the arc after it started 40 mm too low (E0253 on re-read).
+SAME_Z = ("G71 G90 G94 G19 G40 G49 G80\nG00 Y0. Z0.\nG00 G43 Z0. H1\nG91 G02 Y-8. Z-8. R6.157 F300.\nG90\n"
+          "G49 G00 Z0.\nM30\n")
+
+
+@pytest.mark.parametrize("target", ["series8", "fanuc", "grbl", "linuxcnc", "szgh", "haas"])
+def test_a_length_on_an_unchanged_z_moves_the_tool(target: str, tmp_path: Path) -> None:
+    tools = tmp_path / "tools.toml"
+    tools.write_text("units = \"mm\"\n[tools.1]\nlength_mm = 40.0\nradius_mm = 0.0\n")
+    out = compile_text(SAME_Z, dialect="syntec", emit="gcode", target=target, tools_file=str(tools))
+    assert out.ok, [(d.code, d.message) for d in out.sink.items]
+    cmds, again = compile_commands(out.output, dialect=target, tools_file=str(tools))
+    assert not [d.code for d in again.sink.items if d.code.startswith("E")], out.output
+    want = motion(compile_commands(SAME_Z, dialect="syntec", tools_file=str(tools))[0])
+    assert want[1][1][2] == 40.0  # G43 Z0. H1: Z + H1 in machine terms (SYNTEC §4.21)
+    assert not difference(want, motion(cmds), 1e-3), out.output

@@ -57,6 +57,10 @@ class FrameSync(BlockWriter):
             self.cycle_initial = None
         fold = self.tf.fold(f, False)
         if fold != self.fold:
+            old_fold = self.fold or (0.0,) * 6
+            # an axis whose folded offset changed moves with the next move: it names that axis even when
+            # the number is the one written last (a G43 folded into Z: the tool goes up by the length)
+            self.restate |= {i for i in range(3) if abs(fold[i] - old_fold[i]) > 1e-12 and i not in self.unknown}
             self.fold = fold
             self.qpos = None
         if any(abs(v) > 1e-12 for v in fold):
