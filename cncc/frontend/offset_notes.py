@@ -9,7 +9,7 @@ program then gets one warning, at the first use, whose message lists the numbers
 from __future__ import annotations
 
 from dataclasses import replace
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from cncc import diagnostics as dg
 from cncc.frontend.run_state import OffsetNotes
@@ -34,9 +34,20 @@ def offset_missing(it: Interpreter, span: Span, letter: str, index: int) -> None
     message = (f"no tool table (--tools): 0 is used for the offsets {', '.join(st.names)}"
                if len(st.names) > 1 else f"no tool table (--tools): 0 is used for the offset {name}")
     items = it.sink.items
-    if 0 <= st.at < len(items) and items[st.at].code == dg.OFFSET_NOT_IN_TABLE:
-        items[st.at] = replace(items[st.at], message=message)
+    at = _find(items, st)
+    if at >= 0:
+        items[at] = replace(items[at], message=message)
+        st.at, st.item = at, items[at]
         return
     before = len(items)
     it.sink.emit(dg.OFFSET_NOT_IN_TABLE, span, message)
-    st.at = before if len(items) > before else -1
+    st.at, st.item = (before, items[before]) if len(items) > before else (-1, None)
+
+
+def _find(items: list[Any], st: OffsetNotes) -> int:
+    """Where the warning is now: at its index, or moved (a stage may take reports out and put them back)."""
+    if st.item is None:
+        return -1
+    if 0 <= st.at < len(items) and items[st.at] is st.item:
+        return st.at
+    return next((k for k in range(len(items) - 1, -1, -1) if items[k] is st.item), -1)

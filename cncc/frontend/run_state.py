@@ -86,7 +86,8 @@ class OffsetNotes:
 
     table_given: bool
     names: list[str] = field(default_factory=list)
-    at: int = -1  # index of the warning in the sink
+    at: int = -1  # index of the warning in the sink (a hint: the item itself is ``item``)
+    item: object = None  # the warning as emitted (found again by identity)
 
 
 @dataclass(slots=True)

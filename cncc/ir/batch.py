@@ -186,17 +186,13 @@ def rebatch(items: Iterable[Item], sink: Any = None) -> Iterator[Item]:
     whose feed is theirs.  A pass that works move by move (cutter compensation) hands on batches
     again this way, so the stages after it keep their vectorised paths.
 
-    Diagnostics keep their order: while a run is held, what the stages before report (``sink``'s
-    ``emit``) is kept back, and when they report something the run is handed on first (the stages
-    after report on its moves), then the kept reports are made, as the command path orders them."""
+    Diagnostics keep their order: what the stages before report while a run is held is taken out
+    of ``sink``'s list, the run is handed on (the stages after report on its moves), and the
+    reports are put back after those, as the command path orders them.  The same objects go
+    back, so a stage that updates its own report in place (W0513's list of offsets) finds it."""
     run: list[Command] = []
     feed_in_force = -1.0  # a rapid row's feed: the last feed seen (the front end's rule)
     before = -1.0  # the feed in force before the run
-    kept: list[tuple[tuple[Any, ...], dict[str, Any]]] = []
-
-    def keep(*args: Any, **kwargs: Any) -> None:
-        kept.append((args, kwargs))
-
     def flush() -> Iterator[Item]:
         if len(run) - (isinstance(run[-1], FeedRate) if run else 0) >= REBATCH_MIN:
             tail = [run.pop()] if isinstance(run[-1], FeedRate) else []
@@ -209,10 +205,13 @@ def rebatch(items: Iterable[Item], sink: Any = None) -> Iterator[Item]:
     sink = _innermost(sink)
     source = iter(items)
     while True:
-        x = _pull(source, sink if run else None, keep)
-        if kept:  # reports of the stages before: after the stages after saw the run
+        held = len(sink.items) if sink is not None and run else -1
+        x = next(source, None)
+        if 0 <= held < len(sink.items):  # reports of the stages before: after the stages after saw the run
+            early = sink.items[held:]
+            del sink.items[held:]
             yield from flush()
-            _replay(sink, kept)
+            sink.items.extend(early)
         if x is None:
             break
         if isinstance(x, MoveBatch):
@@ -247,23 +246,6 @@ def _innermost(sink: Any) -> Any:
     while sink is not None and hasattr(sink, "inner"):
         sink = sink.inner
     return sink
-
-
-def _pull(source: Iterator[Item], sink: Any, keep: Any) -> Item | None:
-    """The next item (None: no more); with ``sink``, its reports go to ``keep`` meanwhile."""
-    if sink is None:
-        return next(source, None)
-    sink.emit = keep  # the instance's attribute hides the method while the stages before run
-    try:
-        return next(source, None)
-    finally:
-        del sink.emit
-
-
-def _replay(sink: Any, kept: list[tuple[tuple[Any, ...], dict[str, Any]]]) -> None:
-    for args, kwargs in kept:
-        sink.emit(*args, **kwargs)
-    kept.clear()
 
 
 def _row(c: Command) -> bool:

@@ -22,6 +22,8 @@ from dataclasses import dataclass
 
 from cncc.ir import Plane, Vec6
 
+ARC_LETTERS = {Plane.XY: ("I", "J"), Plane.ZX: ("K", "I"), Plane.YZ: ("J", "K")}  # centre words per plane
+
 TAU = 2.0 * math.pi
 EPS_RAD = 1e-9
 

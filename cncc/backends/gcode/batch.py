@@ -19,7 +19,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from cncc.backends import numtext as nt
-from cncc.backends.gcode.emit import ARC_LETTERS
+from cncc.backends.gcode.arcs import ARC_LETTERS
 from cncc.backends.gcode.frames import add, sub
 from cncc.backends.gcode.numbers import LARGEST, fixed
 from cncc.ir import Frame

@@ -36,7 +36,7 @@ from collections.abc import Iterable, Iterator
 from cncc import diagnostics as dg
 from cncc.backends.gcode import cycles as cy
 from cncc.backends.gcode import patterns as pt
-from cncc.backends.gcode.arcs import ArcForm, helix_feed_ratio, split
+from cncc.backends.gcode.arcs import ARC_LETTERS, ArcForm, helix_feed_ratio, split
 from cncc.backends.gcode.modes import ModeWriter
 from cncc.backends.gcode.numbers import fixed
 from cncc.backends.gcode.writer import AXES, EmitOptions
@@ -72,7 +72,6 @@ from cncc.ir.batch import Item, MoveBatch, expand
 
 __all__ = ["AXES", "EmitOptions", "GcodeEmitter", "emit_gcode"]
 
-ARC_LETTERS = {Plane.XY: ("I", "J"), Plane.ZX: ("K", "I"), Plane.YZ: ("J", "K")}
 _SPINDLE_OPS = {SpindleState.CW: "spindle_cw", SpindleState.CCW: "spindle_ccw", SpindleState.OFF: "spindle_off",
                 SpindleState.ORIENT: "spindle_orient"}
 _COOLANT_OPS = {CoolantState.FLOOD: "coolant_flood", CoolantState.MIST: "coolant_mist",
