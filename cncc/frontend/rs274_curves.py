@@ -22,17 +22,13 @@ from typing import TYPE_CHECKING
 from cncc import diagnostics as dg
 from cncc.dialects import CodeDef
 from cncc.frontend import nurbs, ops
-from cncc.frontend.rs274_g10 import controller_error
+from cncc.frontend.ops import controller_error, reject
 from cncc.ir import Arc, CompSide, Linear, NurbsFeed, Origin, OriginKind, Plane, Vec6
 
 if TYPE_CHECKING:
     from cncc.frontend.interp import BlockContext, Interpreter
 
 _OTHER_AXES = "ZABC"
-
-
-def _fail(it: Interpreter, ctx: BlockContext, key: str, default: str) -> None:
-    it.emit_error(dg.CONTROLLER_REJECTS, ctx.span, controller_error(it, key, default))
 
 
 # ---- G5 / G5.1 ------------------------------------------------------------------------------
@@ -43,13 +39,13 @@ def _select_spline(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
 
 def _spline_checks(it: Interpreter, ctx: BlockContext) -> bool:
     if it.frame.comp_side is not CompSide.OFF:
-        _fail(it, ctx, "spline_comp", "Cannot convert spline with cutter radius compensation")
+        reject(it, ctx.span, "spline_comp", "Cannot convert spline with cutter radius compensation")
     elif it.frame.plane is not Plane.XY:
-        _fail(it, ctx, "spline_plane", "Splines must be in the XY plane")
+        reject(it, ctx.span, "spline_plane", "Splines must be in the XY plane")
     elif any(k in ctx.words for k in _OTHER_AXES):
-        _fail(it, ctx, "spline_axes", "Splines may not have motion in Z, A, B, or C")
+        reject(it, ctx.span, "spline_axes", "Splines may not have motion in Z, A, B, or C")
     elif not it.modal.feed:
-        _fail(it, ctx, "nurbs_zero_feed", "Cannot make a NURBS with 0 feedrate")
+        reject(it, ctx.span, "nurbs_zero_feed", "Cannot make a NURBS with 0 feedrate")
     else:
         return True
     return False
@@ -69,11 +65,11 @@ def _cubic(it: Interpreter, ctx: BlockContext, end: Vec6) -> None:
         return
     pq = _offset(it, ctx, "P", "Q")
     if pq is None:
-        _fail(it, ctx, "g5_pq", "Must specify both P and Q with G5")
+        reject(it, ctx.span, "g5_pq", "Must specify both P and Q with G5")
         return
     ij = _offset(it, ctx, "I", "J")
     if ij is None and ("I" in ctx.words or "J" in ctx.words):
-        _fail(it, ctx, "g5_ij", "Must specify both I and J, or neither")
+        reject(it, ctx.span, "g5_ij", "Must specify both I and J, or neither")
         return
     st = state(it)
     if ij is None:
@@ -89,7 +85,7 @@ def _quadratic(it: Interpreter, ctx: BlockContext, end: Vec6) -> None:
         return
     ij = _offset(it, ctx, "I", "J")
     if ij is None:
-        _fail(it, ctx, "g5_1_ij", "Must specify both I and J with G5.1")
+        reject(it, ctx.span, "g5_1_ij", "Must specify both I and J with G5.1")
         return
     x0, y0 = it.pos[0], it.pos[1]
     _draw(it, ctx, [(x0, y0, 1.0), (x0 + ij[0], y0 + ij[1], 1.0), (end[0], end[1], 1.0)], 3, "G5.1")
@@ -142,7 +138,7 @@ def _nurbs_point(it: Interpreter, ctx: BlockContext, end: Vec6) -> None:
 
     st = state(it)
     if ("X" in ctx.words) != ("Y" in ctx.words) or any(k in ctx.words for k in _OTHER_AXES):
-        _fail(it, ctx, "nurbs_xy", "You must specify both X and Y coordinates for Control Points")
+        reject(it, ctx.span, "nurbs_xy", "You must specify both X and Y coordinates for Control Points")
         return
     if not st.nurbs:  # the mode was entered with no G5.2 line of its own
         st.nurbs, st.nurbs_order = [(it.pos[0], it.pos[1], 1.0)], 3
@@ -153,7 +149,7 @@ def _nurbs_point(it: Interpreter, ctx: BlockContext, end: Vec6) -> None:
     g5_2_line = any(c.op == "nurbs_begin" for c in ctx.codes)
     weight = pw.value if pw is not None else (1.0 if g5_2_line else 0.0)
     if weight <= 0:
-        _fail(it, ctx, "nurbs_weight", "Must specify positive weight P for every Control Point")
+        reject(it, ctx.span, "nurbs_weight", "Must specify positive weight P for every Control Point")
         return
     st.nurbs.append((end[0], end[1], weight))
 
@@ -165,7 +161,7 @@ def _nurbs_end(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     st = state(it)
     ctx.axis_used = True
     if it.modal.motion != "nurbs_begin" or len(st.nurbs) < 1:
-        _fail(it, ctx, "nurbs_end_without_begin", "Cannot use G5.3 without G5.2 first")
+        reject(it, ctx.span, "nurbs_end_without_begin", "Cannot use G5.3 without G5.2 first")
         return
     cps, order = st.nurbs, st.nurbs_order
     st.nurbs = []
@@ -176,7 +172,7 @@ def _nurbs_end(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
         it.emit_error(dg.CONTROLLER_REJECTS, ctx.span, text.format(order))
         return
     if not it.modal.feed:
-        _fail(it, ctx, "nurbs_zero_feed", "Cannot make a NURBS with 0 feedrate")
+        reject(it, ctx.span, "nurbs_zero_feed", "Cannot make a NURBS with 0 feedrate")
         return
     _draw(it, ctx, cps, order, "G5.2")
 

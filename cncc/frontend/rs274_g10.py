@@ -17,46 +17,36 @@ import math
 from dataclasses import replace
 from typing import TYPE_CHECKING
 
-from cncc import diagnostics as dg
 from cncc.dialects import CodeDef
-from cncc.frontend.ops import AXES
+from cncc.frontend.ops import AXES, reject
 from cncc.ir import SetWorkSystem, SetXyRotation, Vec6, WriteToolTable, WriteWorkTable
 
 if TYPE_CHECKING:
     from cncc.frontend.interp import BlockContext, Interpreter
 
 
-def controller_error(it: Interpreter, key: str, default: str) -> str:
-    """The controller's own text for error ``key`` (dialect ``[errors]``), else ``default``."""
-    return str(it.dialect.raw.get("errors", {}).get(key, default))
-
-
-def _fail(it: Interpreter, ctx: BlockContext, key: str, default: str) -> None:
-    it.emit_error(dg.CONTROLLER_REJECTS, ctx.span, controller_error(it, key, default))
-
-
 def run_g10(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     lw, pw = ctx.words.get("L"), ctx.words.get("P")
     table = int(lw.value) if lw is not None else -1
     if table not in (1, 2, 10, 11, 20):
-        _fail(it, ctx, "g10_l", "Line with G10 does not have L1, L10, L11, L2, or L20")
+        reject(it, ctx.span, "g10_l", "Line with G10 does not have L1, L10, L11, L2, or L20")
         return
     if pw is None:
-        _fail(it, ctx, "g10_p", "Line with G10 does not have P word")
+        reject(it, ctx.span, "g10_p", "Line with G10 does not have P word")
         return
     p = round(pw.value)
     if table in (1, 10, 11):
         if p < 1 or p != pw.value:
-            _fail(it, ctx, "g10_tool", "Invalid tool number")
+            reject(it, ctx.span, "g10_tool", "Invalid tool number")
             return
         _tool_entry(it, ctx, table, p)
         return
     systems = int(it.dialect.option("g10_systems", 9))
     if p < 0 or p > systems or p != pw.value:
-        _fail(it, ctx, "g10_p_range", f"P value out of range with G10 L{table}")
+        reject(it, ctx.span, "g10_p_range", f"P value out of range with G10 L{table}")
         return
     if table == 20 and "R" in ctx.words and it.dialect.option("g10_l20_rejects_r", False):
-        _fail(it, ctx, "g10_l20_r", "R not allowed in G10 L20")
+        reject(it, ctx.span, "g10_l20_r", "R not allowed in G10 L20")
         return
     _work_entry(it, ctx, table, p or it.frame.work_index)
 

@@ -26,17 +26,13 @@ from typing import TYPE_CHECKING
 from cncc import diagnostics as dg
 from cncc.dialects import CodeDef
 from cncc.frontend import ops
-from cncc.frontend.rs274_g10 import controller_error
+from cncc.frontend.ops import controller_error, reject
 from cncc.ir import Aux
 
 if TYPE_CHECKING:
     from cncc.frontend.interp import BlockContext, Interpreter
 
 _WORDS = "PELQ"  # the words these codes read, in the order they are written back
-
-
-def _fail(it: Interpreter, ctx: BlockContext, key: str, default: str) -> None:
-    it.emit_error(dg.CONTROLLER_REJECTS, ctx.span, controller_error(it, key, default))
 
 
 def _value(ctx: BlockContext, letter: str) -> float | None:
@@ -52,7 +48,7 @@ def _emit(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
 @ops.handler("digital_out_sync", "digital_out_sync_off", "digital_out", "digital_out_off")
 def _digital_out(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     if _value(ctx, "P") is None:
-        _fail(it, ctx, f"m{c.tenths // 10}_p", f"No valid P word with {c.name}")
+        reject(it, ctx.span, f"m{c.tenths // 10}_p", f"No valid P word with {c.name}")
         return
     _emit(it, ctx, c)
 
@@ -66,13 +62,13 @@ def _wait_input(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     if wait_type < 0:  # rs274's generic L check, the code cncc gives it for M98 L (E0316)
         it.emit_error(dg.MACRO_BAD_CALL, ctx.span, controller_error(it, "E0316:negative", "Negative l word used"))
     elif digital and analog:
-        _fail(it, ctx, "m66_both", "Invalid to select both a digital and an analog input with M66")
+        reject(it, ctx.span, "m66_both", "Invalid to select both a digital and an analog input with M66")
     elif not (digital or analog):
-        _fail(it, ctx, "m66_none", "Need to have either a valid P or a valid E word with M66")
+        reject(it, ctx.span, "m66_none", "Need to have either a valid P or a valid E word with M66")
     elif analog and wait_type != 0:
-        _fail(it, ctx, "m66_analog", "Can't select analog input with wait type != immediate return")
+        reject(it, ctx.span, "m66_analog", "Can't select analog input with wait type != immediate return")
     elif wait_type != 0 and timeout_s <= 0:
-        _fail(it, ctx, "m66_timeout", "Zero timeout with wait type != immediate return")
+        reject(it, ctx.span, "m66_timeout", "Zero timeout with wait type != immediate return")
     else:
         _emit(it, ctx, c)
 
@@ -81,6 +77,6 @@ def _wait_input(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
 def _analog_out(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     e = _value(ctx, "E")
     if e is None or e < 0:
-        _fail(it, ctx, f"m{c.tenths // 10}_e", f"Invalid analog index with {c.name}")
+        reject(it, ctx.span, f"m{c.tenths // 10}_e", f"Invalid analog index with {c.name}")
         return
     _emit(it, ctx, c)

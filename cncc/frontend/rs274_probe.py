@@ -25,9 +25,9 @@ import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
-from cncc import diagnostics as dg
 from cncc.dialects import CodeDef
 from cncc.frontend import registry
+from cncc.frontend.ops import reject
 from cncc.ir import CompSide, FeedRate, Linear, Origin, OriginKind, Probe, Vec6
 
 if TYPE_CHECKING:
@@ -64,7 +64,7 @@ def track_feed(it: Interpreter, ctx: BlockContext) -> None:
     if not it.modal.path.inverse_time and "F" in ctx.words:
         _state(it).units_feed = ctx.words["F"].value
     if any(c.op in PROBE_OPS for c in ctx.codes) and not any(k in ctx.words for k in PROBE_AXES):
-        _fail(it, ctx, "probe_no_axes", "All axes missing with motion code")  # a G38.x block must move
+        reject(it, ctx.span, "probe_no_axes", "All axes missing with motion code")  # a G38.x block must move
 
 
 @registry.handler(*PROBE_OPS)
@@ -72,23 +72,22 @@ def select(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     it.modal = it.modal.with_(motion=c.op, cycle="")
 
 
-def _fail(it: Interpreter, ctx: BlockContext, key: str, default: str) -> None:
-    text = str(it.dialect.raw.get("errors", {}).get(key, default))  # the controller's own text
-    it.emit_error(dg.CONTROLLER_REJECTS, ctx.span, text)
-
-
 def _probe(it: Interpreter, ctx: BlockContext, end: Vec6, op: str, code: str) -> None:
     if it.frame.comp_side is not CompSide.OFF:
-        return _fail(it, ctx, "probe_comp", "Cannot probe with cutter radius comp on")
+        reject(it, ctx.span, "probe_comp", "Cannot probe with cutter radius comp on")
+        return
     inverse_time = it.modal.path.inverse_time
     feed = _state(it).units_feed if inverse_time else (it.modal.feed or 0.0)
     if feed <= 0.0:
-        return _fail(it, ctx, "probe_zero_feed", "Cannot probe with zero feed rate")
+        reject(it, ctx.span, "probe_zero_feed", "Cannot probe with zero feed rate")
+        return
     if it.modal.per_rev:
-        return _fail(it, ctx, "probe_per_rev", "Cannot probe with feed per rev mode")
+        reject(it, ctx.span, "probe_per_rev", "Cannot probe with feed per rev mode")
+        return
     start = it.pos
     if start == end:
-        return _fail(it, ctx, "probe_too_close", "Start point too close to probe point")
+        reject(it, ctx.span, "probe_too_close", "Start point too close to probe point")
+        return
     if inverse_time:  # the block's F is not a feed rate to rs274: no SET_FEED_RATE for it
         ctx.out[:] = [c for c in ctx.out if not isinstance(c, FeedRate)]
     k = it.frame.units.mm_per_unit

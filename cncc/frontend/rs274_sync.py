@@ -19,19 +19,14 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from cncc import diagnostics as dg
 from cncc.dialects import CodeDef
 from cncc.frontend import ops
 from cncc.frontend.cycles import spindle_state
-from cncc.frontend.rs274_g10 import controller_error
+from cncc.frontend.ops import reject
 from cncc.ir import Linear, Origin, OriginKind, RigidTap, Spindle, SpindleState, SpindleSync, Vec6
 
 if TYPE_CHECKING:
     from cncc.frontend.interp import BlockContext, Interpreter
-
-
-def _fail(it: Interpreter, ctx: BlockContext, key: str, default: str) -> None:
-    it.emit_error(dg.CONTROLLER_REJECTS, ctx.span, controller_error(it, key, default))
 
 
 @ops.handler("spindle_sync_rs274", "rigid_tap_rs274")
@@ -43,14 +38,14 @@ def _pitch_mm(it: Interpreter, ctx: BlockContext, code: str) -> float | None:
     """K in mm per revolution, after LinuxCNC's checks; None after an error."""
     kw = ctx.words.get("K")
     if kw is None:
-        _fail(it, ctx, "sync_no_k", "K word missing with g33/g33.1")
+        reject(it, ctx.span, "sync_no_k", "K word missing with g33/g33.1")
         return None
     if "F" in ctx.words:
-        _fail(it, ctx, "sync_f_word", "F word used with a g33/g33.1")
+        reject(it, ctx.span, "sync_f_word", "F word used with a g33/g33.1")
         return None
     if spindle_state(it) not in (SpindleState.CW, SpindleState.CCW):
         key = "sync_no_spindle_g33" if code == "G33" else "sync_no_spindle_g33_1"
-        _fail(it, ctx, key, f"Spindle not turning in {code}")
+        reject(it, ctx.span, key, f"Spindle not turning in {code}")
         return None
     return it.reader.length_mm(kw)
 

@@ -20,15 +20,11 @@ from typing import TYPE_CHECKING
 from cncc import diagnostics as dg
 from cncc.dialects import CodeDef
 from cncc.frontend import registry
-from cncc.frontend.ops import not_in_tool_table, tool_not_found
+from cncc.frontend.ops import not_in_tool_table, reject, tool_not_found
 from cncc.ir import SetToolNumber
 
 if TYPE_CHECKING:
     from cncc.frontend.interp import BlockContext, Interpreter
-
-
-def controller_error(it: Interpreter, key: str, default: str) -> str:
-    return str(it.dialect.raw.get("errors", {}).get(key, default))
 
 
 @registry.handler("set_tool_number")
@@ -36,8 +32,7 @@ def m61(it: Interpreter, ctx: BlockContext, c: CodeDef) -> None:
     qw = ctx.words.get("Q")
     tool = math.floor(qw.value + 0.5) if qw is not None else -1
     if tool < 0:
-        it.emit_error(dg.CONTROLLER_REJECTS, ctx.span, controller_error(
-            it, "m61_q", "Need non-negative Q-word to specify tool number with M61"))
+        reject(it, ctx.span, "m61_q", "Need non-negative Q-word to specify tool number with M61")
         return
     if not_in_tool_table(it, tool):
         it.emit_error(dg.CONTROLLER_REJECTS, ctx.span, tool_not_found(it, tool))

@@ -19,6 +19,7 @@ from typing import TYPE_CHECKING
 
 from cncc import diagnostics as dg
 from cncc.frontend import registry
+from cncc.frontend.ops import reject
 from cncc.frontend.syntax import Word
 
 if TYPE_CHECKING:
@@ -30,34 +31,28 @@ _SPINDLE_USERS = frozenset({"spindle_cw", "spindle_ccw", "spindle_off", "spindle
 _NO_USER = ("$ (spindle selection) word with no M3, M4, M5, M19, M51, G33, G33.1, G76, G95, G96 or G97 to use it")
 
 
-def _fail(it: Interpreter, ctx: BlockContext, key: str, default: str) -> bool:
-    text = str(it.dialect.raw.get("errors", {}).get(key, default))  # the controller's own text
-    it.emit_error(dg.CONTROLLER_REJECTS, ctx.span, text)
-    return False
-
-
 def polar_to_xy(it: Interpreter, ctx: BlockContext) -> bool:
     """Replace the block's ``@``/``^`` by X and Y words; False after an error (no motion)."""
     words = ctx.words
     for letter in "XY":
         if letter in words:
-            return _fail(it, ctx, f"polar_and_{letter.lower()}",
+            return reject(it, ctx.span, f"polar_and_{letter.lower()}",
                          f"Cannot specify both polar coordinate and {letter} word")
     if "machine_coords" in ctx.block_flags:
-        return _fail(it, ctx, "polar_g53", "Cannot use polar coordinates with G53")
+        return reject(it, ctx.span, "polar_g53", "Cannot use polar coordinates with G53")
     k = it.frame.units.mm_per_unit
     cx, cy = it.pos[0] / k, it.pos[1] / k
     at_origin = cx == 0.0 and cy == 0.0
     rw, aw = words.pop("@", None), words.pop("^", None)
     if it.modal.incremental:
         if at_origin:
-            return _fail(it, ctx, "polar_incremental_origin",
+            return reject(it, ctx.span, "polar_incremental_origin",
                          "Incremental motion with polar coordinates is indeterminate when at the origin")
         radius = math.hypot(cx, cy) + (rw.value if rw is not None else 0.0)
         angle = math.atan2(cy, cx) + (math.radians(aw.value) if aw is not None else 0.0)
     else:
         if aw is None and at_origin:
-            return _fail(it, ctx, "polar_no_angle", "Must specify angle in polar coordinate if at the origin")
+            return reject(it, ctx.span, "polar_no_angle", "Must specify angle in polar coordinate if at the origin")
         radius = rw.value if rw is not None else math.hypot(cx, cy)
         angle = math.radians(aw.value) if aw is not None else math.atan2(cy, cx)
     x, y = radius * math.cos(angle), radius * math.sin(angle)
@@ -77,7 +72,7 @@ def spindle_word(it: Interpreter, ctx: BlockContext) -> None:
         return
     ops_here = {c.op for c in ctx.codes}
     if "S" not in ctx.words and not ops_here & _SPINDLE_USERS:
-        _fail(it, ctx, "spindle_word_unused", _NO_USER)
+        reject(it, ctx.span, "spindle_word_unused", _NO_USER)
         return
     n = int(w.value)  # rs274 truncates
     spindles = int(it.dialect.option("spindles", 1))  # [TRAJ] SPINDLES of an INI file
@@ -87,10 +82,10 @@ def spindle_word(it: Interpreter, ctx: BlockContext) -> None:
                          "codes run on it (LinuxCNC would address spindle " + str(n) + ")")
         return
     if "S" in ctx.words:
-        _fail(it, ctx, "spindle_number_s", "Invalid spindle ($) number in Spindle speed command")
+        reject(it, ctx.span, "spindle_number_s", "Invalid spindle ($) number in Spindle speed command")
         return
     m = next((c.name for c in ctx.codes if c.op in ("spindle_cw", "spindle_ccw", "spindle_off")), "")
-    _fail(it, ctx, "spindle_number_m", f"Spindle ($) number out of range in {m.replace('M0', 'M')} Command"
+    reject(it, ctx.span, "spindle_number_m", f"Spindle ($) number out of range in {m.replace('M0', 'M')} Command"
           if m else "Invalid spindle ($) number")
 
 
