@@ -89,7 +89,10 @@ def read_input(path: str, sources: SourceMap, sink: DiagnosticSink, stdin: TextI
 
 
 # ---- offsets and tools -----------------------------------------------------------------
-def load_tables(opts: Options, sink: DiagnosticSink) -> tuple[dict[int, Vec6], dict[int, float], dict[int, float]]:
+def load_tables(opts: Options, sink: DiagnosticSink
+                ) -> tuple[dict[int, Vec6], dict[int, float], dict[int, float], frozenset[int] | None]:
+    """Work offsets, tool lengths and radii, and the T numbers a LinuxCNC tool table (.tbl) lists (None:
+    no such table; cncc's TOML tables list offset numbers, not tools)."""
     from cncc import tables
 
     work: dict[int, Vec6] = {}
@@ -100,12 +103,16 @@ def load_tables(opts: Options, sink: DiagnosticSink) -> tuple[dict[int, Vec6], d
             work = tables.read_offsets(opts.offsets_file)
         except tables.TableError as exc:
             sink.emit(dg.BAD_OFFSETS_FILE, NO_SPAN, str(exc))
+    listed: frozenset[int] | None = None
     if opts.tools_file:
         try:
             lengths, radii = tables.read_tools(opts.tools_file)
         except tables.TableError as exc:
             sink.emit(dg.BAD_OFFSETS_FILE, NO_SPAN, str(exc))
-    return work, lengths, radii
+        else:
+            if str(opts.tools_file).endswith(".tbl"):
+                listed = frozenset(lengths) | frozenset(radii)
+    return work, lengths, radii, listed
 
 
 # ---- pipeline ---------------------------------------------------------------------------
@@ -140,13 +147,9 @@ def interp_options(opts: Options, machine: MachineModel, sink: DiagnosticSink) -
     from cncc.dialects import code_tenths
     from cncc.frontend import InterpOptions
 
-    work, lengths, radii = load_tables(opts, sink)
+    work, lengths, radii, listed = load_tables(opts, sink)
     refs = tuple(tuple(r) + (0.0,) * (6 - len(r)) for r in machine.reference_positions_mm) or ((0.0,) * 6,)
     m_codes = {code_tenths(name[1:]): (m.meaning or "machine function") for name, m in machine.m_codes}
-    table_failed = any(d.code == dg.BAD_OFFSETS_FILE for d in sink.items)
-    # only a LinuxCNC tool table (.tbl) lists tools by T number; cncc's TOML tables list offset numbers
-    tool_table = bool(opts.tools_file) and str(opts.tools_file).endswith(".tbl") and not table_failed
-    listed = frozenset(lengths) | frozenset(radii) if tool_table else None
     iopts = InterpOptions(work_offsets_mm=work, tool_lengths_mm=lengths, tool_radii_mm=radii, tool_numbers=listed,
                           reference_mm=refs, block_delete=opts.block_delete, strict=opts.strict,  # type: ignore[arg-type]
                           machine_m_codes=m_codes)
