@@ -12,6 +12,7 @@ from __future__ import annotations
 import re
 import warnings
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import pytest
@@ -34,15 +35,21 @@ def coarse_machine(tmp_path_factory: pytest.TempPathFactory) -> Path:
     return path
 
 
+def _clean_pulses(program: str, common: dict[str, Any]) -> Any:
+    """The CSV pulses of ``program``, asserted free of errors and of numpy RuntimeWarnings (NaN, 0 * inf)."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", RuntimeWarning)
+        pulses = compile_text(program, emit="pulses", pulse_format="csv", **common)
+    assert pulses.ok, [(d.code, d.message) for d in pulses.sink.items]
+    assert not [d.code for d in pulses.sink.items if d.code.startswith("E")]
+    return pulses
+
+
 @pytest.mark.parametrize("level", [1, 2])
 @pytest.mark.parametrize("start", [(-40.0, 30.5, 5.0), (-40.5, 30.0, 5.0), (3.5, -7.1, 5.0)])
 def test_steps_sit_on_their_boundaries(coarse_machine: Path, level: int, start: tuple[float, float, float]) -> None:
     common = {"dialect": "syntec", "machine": str(coarse_machine), "start_machine_mm": start, "opt_level": level}
-    with warnings.catch_warnings():
-        warnings.simplefilter("error", RuntimeWarning)
-        pulses = compile_text(PROGRAM, emit="pulses", pulse_format="csv", **common)
-    assert pulses.ok, [(d.code, d.message) for d in pulses.sink.items]
-    assert not [d.code for d in pulses.sink.items if d.code.startswith("E")]
+    pulses = _clean_pulses(PROGRAM, common)
     timing = compile_text(PROGRAM, emit="timing", keep_trajectory=True, **common)
     traj = timing.runs[0].trajectory
     assert traj is not None
@@ -83,11 +90,7 @@ M99
 def test_a_still_phase_on_a_boundary_makes_no_step(coarse_machine: Path, level: int,
                                                    start: tuple[float, float, float] | None) -> None:
     common = {"dialect": "syntec", "machine": str(coarse_machine), "start_machine_mm": start, "opt_level": level}
-    with warnings.catch_warnings():
-        warnings.simplefilter("error", RuntimeWarning)
-        pulses = compile_text(STILL_ON_BOUNDARY, emit="pulses", pulse_format="csv", **common)
-    assert pulses.ok, [(d.code, d.message) for d in pulses.sink.items]
-    assert not [d.code for d in pulses.sink.items if d.code.startswith("E")]
+    pulses = _clean_pulses(STILL_ON_BOUNDARY, common)
     rows = [line.split(",") for line in pulses.output.splitlines()[1:]]
     steps = np.array([int(r[0]) for r in rows if r[1] == "Z" and r[2] == "step"], dtype=np.int64)
     assert np.all(np.diff(steps) > 1000)  # Z never exceeds ~250 mm/s here: one step per 800 us at most

@@ -13,13 +13,13 @@ import pytest
 
 from cncc.api import compile_commands
 from cncc.backends.pulses import solve
-from cncc.backends.pulses.generate import _steps_per_mm, build_specs
 from cncc.diagnostics import DiagnosticSink
 from cncc.ir.trajectory import Trajectory
 from cncc.machines import load_machine
 from cncc.passes.plan import plan_commands
 from tests.backends import pulses_reference as ref
 from tests.backends.pulse_trajectories import s_curve
+from tests.backends.pulses_pairs import assert_same_ns, axis_pairs
 
 HEAD = "G21 G90 G17 G94\nG0 X10 Y10 Z0\n"
 
@@ -60,28 +60,12 @@ def _planned(text: str, level: int) -> Trajectory:
 
 def _compare(traj: Trajectory, budget: int) -> int:
     """Assert the fast path equals the reference on every window and axis; the steps compared."""
-    machine = load_machine("generic-mill")
-    specs, cols = build_specs(traj, machine, None)
-    rate = _steps_per_mm(traj, specs, cols)
-    seg, seg_ref = solve.segment(traj, rate, budget), ref.segment(traj, rate, budget)
-    np.testing.assert_array_equal(seg.value_mm, seg_ref.value_mm)  # same positions at the segment ends
-    wins = solve.windows(seg, budget)
-    assert wins == ref.windows(seg_ref, budget)
     compared = 0
-    for lo, hi in wins:
-        for spec, i in zip(specs, cols, strict=True):
-            new = solve.exact_axis_steps(traj, seg, lo, hi, i, spec)
-            old = ref.exact_axis_steps(traj, seg_ref, lo, hi, i, spec)
-            np.testing.assert_array_equal(new.direction, old.direction)
-            np.testing.assert_array_equal(new.phase, old.phase)
-            np.testing.assert_array_equal(new.run_first, old.run_first)
-            # the times agree far below the ns rounding; the rounded ns are equal except where the
-            # reference itself sits within that agreement of a half nanosecond
-            assert np.abs(new.t_s - old.t_s).max(initial=0.0) < 1e-11, spec.name
-            ns_new, ns_old = np.rint(new.t_s * 1e9), np.rint(old.t_s * 1e9)
-            tie = np.abs(old.t_s * 1e9 - np.floor(old.t_s * 1e9) - 0.5) < 1e-2
-            assert np.all((ns_new == ns_old) | tie), spec.name
-            compared += int(new.t_s.size)
+    for name, _, _, new, old in axis_pairs(traj, budget):
+        # the times agree far below the ns rounding
+        assert np.abs(new.t_s - old.t_s).max(initial=0.0) < 1e-11, name
+        assert_same_ns(new.t_s, old.t_s, name)
+        compared += int(new.t_s.size)
     return compared
 
 
