@@ -49,7 +49,8 @@ def piece_times(d: F64, counts: I64, v: F64, a: F64, j: F64, length: F64,
         inv_v = np.where(cruise, 1.0 / v, 0.0)
     with np.errstate(invalid="ignore"):
         u: F64 = d * np.repeat(inv_v, counts)  # cruise steps; the others are overwritten below
-    u[np.isnan(u)] = 0.0  # a boundary on a piece that stands still (0 * inf): the step is at its start
+    if np.any(cruise & (v == 0)):  # a boundary on a piece that stands still (0 * inf): the step is at its start
+        u[np.isnan(u)] = 0.0
     if not cruise.all():
         first = np.cumsum(counts) - counts
         for kind, solver in ((~cruise & (j == 0), _accel), (j != 0, _jerk)):
