@@ -14,6 +14,7 @@ from typing import TYPE_CHECKING
 from cncc import diagnostics as dg
 from cncc.dialects import CodeDef
 from cncc.frontend import arcs, catalogue
+from cncc.frontend.controller_errors import controller_error
 from cncc.frontend.polar import polar_target
 from cncc.frontend.registry import (
     BLOCK_HOOKS,
@@ -65,7 +66,6 @@ from cncc.ir.frame import NOT_HELD
 
 if TYPE_CHECKING:
     from cncc.frontend.interp import BlockContext, Interpreter
-    from cncc.source import Span
 
 
 AXES = "XYZABC"
@@ -169,16 +169,6 @@ def tool_not_found(it: Interpreter, tool: int) -> str:
     return controller_error(it, "tool_not_found", "Requested tool {0} not found in the tool table").replace(
         "{0}", str(tool))
 
-
-def controller_error(it: Interpreter, key: str, default: str) -> str:
-    """The controller's own text for error ``key`` (dialect ``[errors]``), else ``default``."""
-    return str(it.dialect.raw.get("errors", {}).get(key, default))
-
-
-def reject(it: Interpreter, span: Span, key: str, default: str) -> bool:
-    """The controller rejects the block with its own text (E0250); False, for ``return reject(...)``."""
-    it.emit_error(dg.CONTROLLER_REJECTS, span, controller_error(it, key, default))
-    return False
 
 
 # ---- positions ------------------------------------------------------------------------

@@ -22,7 +22,7 @@ from typing import TYPE_CHECKING
 from cncc import diagnostics as dg
 from cncc.dialects import CodeDef
 from cncc.frontend import nurbs, ops
-from cncc.frontend.ops import controller_error, reject
+from cncc.frontend.controller_errors import controller_error, reject
 from cncc.ir import Arc, CompSide, Linear, NurbsFeed, Origin, OriginKind, Plane, Vec6
 
 if TYPE_CHECKING:

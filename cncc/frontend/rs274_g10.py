@@ -18,7 +18,8 @@ from dataclasses import replace
 from typing import TYPE_CHECKING
 
 from cncc.dialects import CodeDef
-from cncc.frontend.ops import AXES, reject
+from cncc.frontend.controller_errors import reject
+from cncc.frontend.ops import AXES
 from cncc.ir import SetWorkSystem, SetXyRotation, Vec6, WriteToolTable, WriteWorkTable
 
 if TYPE_CHECKING:

@@ -26,7 +26,7 @@ from typing import TYPE_CHECKING
 from cncc import diagnostics as dg
 from cncc.dialects import CodeDef
 from cncc.frontend import ops
-from cncc.frontend.ops import controller_error, reject
+from cncc.frontend.controller_errors import controller_error, reject
 from cncc.ir import Aux
 
 if TYPE_CHECKING:

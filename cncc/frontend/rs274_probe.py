@@ -27,7 +27,7 @@ from typing import TYPE_CHECKING
 
 from cncc.dialects import CodeDef
 from cncc.frontend import registry
-from cncc.frontend.ops import reject
+from cncc.frontend.controller_errors import reject
 from cncc.ir import CompSide, FeedRate, Linear, Origin, OriginKind, Probe, Vec6
 
 if TYPE_CHECKING:

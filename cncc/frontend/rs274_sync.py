@@ -21,8 +21,8 @@ from typing import TYPE_CHECKING
 
 from cncc.dialects import CodeDef
 from cncc.frontend import ops
+from cncc.frontend.controller_errors import reject
 from cncc.frontend.cycles import spindle_state
-from cncc.frontend.ops import reject
 from cncc.ir import Linear, Origin, OriginKind, RigidTap, Spindle, SpindleState, SpindleSync, Vec6
 
 if TYPE_CHECKING:

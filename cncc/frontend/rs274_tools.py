@@ -20,7 +20,8 @@ from typing import TYPE_CHECKING
 from cncc import diagnostics as dg
 from cncc.dialects import CodeDef
 from cncc.frontend import registry
-from cncc.frontend.ops import not_in_tool_table, reject, tool_not_found
+from cncc.frontend.controller_errors import reject
+from cncc.frontend.ops import not_in_tool_table, tool_not_found
 from cncc.ir import SetToolNumber
 
 if TYPE_CHECKING:

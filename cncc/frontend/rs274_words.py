@@ -19,7 +19,7 @@ from typing import TYPE_CHECKING
 
 from cncc import diagnostics as dg
 from cncc.frontend import registry
-from cncc.frontend.ops import reject
+from cncc.frontend.controller_errors import reject
 from cncc.frontend.syntax import Word
 
 if TYPE_CHECKING:
