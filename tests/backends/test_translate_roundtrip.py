@@ -73,3 +73,23 @@ def test_translation_keeps_motion(source: str, path: Path, target: str) -> None:
 def test_inch_program_within_one_micron_with_five_decimals(target: str) -> None:
     text = (DATA / "corpus" / "syntec" / "inch.nc").read_text()
     check(text, "syntec", target, decimals_inch=5)
+
+
+SPINDLE_ENDS = [
+    "G21 G90 G17\nS1000 M03\nG00 X10 Y10\nG01 X20 Y20 F100\nM02\n",  # the stop M02 implies
+    "G21 G90 G17\nS1000 M03\nG00 X10 Y10\nG01 X20 Y20 F100\nM05\nM30\n",  # stopped, then the end
+    "G21 G90 G17\nS1000 M03\nG01 X20 F100\nM05\nG00 Z10\nM05\nS800 M04\nG01 X5\nM02\n",
+]
+
+
+@pytest.mark.parametrize("target", TARGETS)
+@pytest.mark.parametrize("text", SPINDLE_ENDS)
+def test_translating_a_translation_changes_nothing(text: str, target: str) -> None:
+    """A second translation is a fixed point: the spindle stop that M02/M30 implies (which the
+    front end spells out, as rs274 does) is not written again after the M05 the first one wrote."""
+    once = translate(text, "linuxcnc", target)
+    twice = translate(once, target, target)
+    assert twice == once
+    assert translate(twice, target, target) == once
+    stops = [ln for ln in once.splitlines() if ln.split(";")[0].split("(")[0].strip() in ("M05", "M5")]
+    assert 1 <= len(stops) <= text.count("M05") + 1

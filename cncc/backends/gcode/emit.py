@@ -136,7 +136,7 @@ class GcodeEmitter(ModeWriter):
             case SelectTool():
                 yield self._select_tool(cmd)
             case Spindle():
-                yield self.op_block(_SPINDLE_OPS[cmd.state], f"spindle {cmd.state.value}")
+                yield from self._spindle(cmd)
             case Coolant():
                 yield self.op_block(_COOLANT_OPS[cmd.state], f"{cmd.state.value} coolant")
             case ToolChange():
@@ -151,11 +151,18 @@ class GcodeEmitter(ModeWriter):
             case Wait():
                 yield self.op_block("program_stop", "a wait", comment=f"wait: {cmd.what}")
             case Aux():
+                self.spindle_stopped = False  # a machine M code may start anything
                 yield from self._aux(cmd)
             case _ if isinstance(cmd, MODE_TYPES):
                 yield from self._mode(cmd)
             case _:
                 pass
+
+    def _spindle(self, cmd: Spindle) -> Iterator[str]:
+        stop = cmd.state is SpindleState.OFF
+        if not (stop and self.spindle_stopped):  # M02/M30's implied stop after an M05: not written twice
+            yield self.op_block(_SPINDLE_OPS[cmd.state], f"spindle {cmd.state.value}")
+        self.spindle_stopped = stop
 
     def _return_start(self, cmd: Rapid) -> Iterator[str]:
         """SZGH G26/G261-G264: back to where the program started, which the output cannot know.

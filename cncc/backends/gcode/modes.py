@@ -46,6 +46,7 @@ class ModeWriter(FrameSync):
             case SetToolNumber():  # M61 Q
                 yield self.op_block("set_tool_number", "setting the tool number without a change", [f"Q{cmd.tool}"])
             case CallBoundary() if self.opt.keep_subprograms:
+                self.spindle_stopped = False  # a kept body's blocks may not depend on where it is called
                 from cncc.backends.gcode.subprograms import call_marker
 
                 yield call_marker(self, cmd)

@@ -101,6 +101,9 @@ class BlockWriter:
         self.g92_force: set[int] = set()  # axes of a G92 preset in the source: written even if unchanged
         self.probe: tuple[str, int] | None = None  # a G38.x marker: (target code or "", moves of it still to come)
         self.started = False  # the preamble is written
+        # the output's last spindle block was M05 and nothing since can have turned it on: a further stop
+        # (the one M02/M30 implies, which the front end spells out) is not written again
+        self.spindle_stopped = False
 
     # ---- numbers --------------------------------------------------------------------------
     @property
